@@ -1,1 +1,35 @@
-fn main() {}
+//! `cuticle`: the command line. Thin by design: each subcommand parses its flags, calls one
+//! library function, and writes its files through [`output`] (atomically, with a JSON record).
+
+mod commands;
+mod output;
+mod progress;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "cuticle", version, about = "Physically based hair: fiber models, ground truth, rendering")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Lat-long images of a fiber model's lobes (and, with --samples, of its importance sampling).
+    Lobes(commands::lobes::Args),
+    /// Albedo ∫S dω of a fiber model over a grid of incident angles (white furnace).
+    Furnace(commands::furnace::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Lobes(args) => commands::lobes::run(args),
+        Command::Furnace(args) => commands::furnace::run(args),
+    };
+    if let Err(err) = result {
+        eprintln!("error: {err:#}");
+        std::process::exit(1);
+    }
+}

@@ -1,0 +1,2 @@
+pub mod furnace;
+pub mod lobes;
