@@ -1,10 +1,25 @@
 //! Hair fiber scattering: the shared fiber frame and lat-long grid, the special functions and
-//! Fresnel factors the models share, and the models themselves — [`Marschner2003`],
-//! [`DEon2011`] and [`NonSeparable`] — each able to evaluate S (DESIGN.md §3), importance-sample
-//! it and report the sampling pdf.
+//! Fresnel factors the models share, and the models themselves — [`DEon2011`] (and, as they
+//! land, Marschner 2003 and the non-separable model) — each able to evaluate S (DESIGN.md §3),
+//! importance-sample it and report the sampling pdf through [`FiberModel`].
 
+pub mod absorption;
+pub mod attenuation;
+pub mod azimuthal;
+pub mod bravais;
+pub mod deon2011;
 pub mod frame;
+pub mod fresnel;
 pub mod latlong;
+pub mod lobe;
+pub mod longitudinal;
+pub mod model;
+pub mod params;
+pub mod special;
 
+pub use deon2011::DEon2011;
 pub use frame::{FiberAngles, FiberFrame, wrap_pi};
 pub use latlong::{LatLongGrid, LatLongImage};
+pub use lobe::{Lobe, LobeValues};
+pub use model::{FiberModel, FiberSample};
+pub use params::{FiberParams, ParamError};

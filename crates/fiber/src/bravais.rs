@@ -1,0 +1,64 @@
+//! Geometry of a smooth circular fiber in the Bravais picture: the projected indices η′ and η″,
+//! the refracted offsets, the azimuthal deflection Φ(p, h) and the internal path length.
+
+use std::f64::consts::PI;
+
+/// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (seed 003).
+pub fn eta_perp(eta: f64, theta: f64) -> f64 {
+    let (s, c) = theta.sin_cos();
+    (eta * eta - s * s).max(0.0).sqrt() / c.abs().max(1e-12)
+}
+
+/// The second Bravais index for the parallel polarisation, η″ = η² cos θ / √(η² − sin²θ).
+pub fn eta_par(eta: f64, theta: f64) -> f64 {
+    let (s, c) = theta.sin_cos();
+    eta * eta * c.abs() / (eta * eta - s * s).max(1e-300).sqrt()
+}
+
+/// γ_t = asin(h / η′), the refracted azimuthal angle inside the fiber.
+pub fn gamma_t(h: f64, eta_prime: f64) -> f64 {
+    (h / eta_prime).clamp(-1.0, 1.0).asin()
+}
+
+/// Φ(p, h) = 2pγ_t − 2γ_i + pπ (seed 000 eq. 3), unwrapped.
+pub fn azimuthal_deflection(p: u32, h: f64, eta_prime: f64) -> f64 {
+    let p = p as f64;
+    let gamma_i = h.clamp(-1.0, 1.0).asin();
+    2.0 * p * gamma_t(h, eta_prime) - 2.0 * gamma_i + p * PI
+}
+
+/// cos θ_t of the refracted inclination, sin θ_t = sin θ / η.
+pub fn cos_theta_t(eta: f64, theta: f64) -> f64 {
+    let s = theta.sin() / eta;
+    (1.0 - s * s).max(0.0).sqrt()
+}
+
+/// Transmittance of one internal segment: exp(−2 μ_a cos γ_t / cos θ_t), the chord of a unit
+/// circle at refracted offset γ_t, stretched by the inclination (DESIGN.md §8 erratum).
+pub fn segment_transmittance(mu_a: f64, gamma_t: f64, cos_theta_t: f64) -> f64 {
+    (-2.0 * mu_a * gamma_t.cos() / cos_theta_t.max(1e-12)).exp()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn indices_reduce_to_eta_at_normal_incidence_and_grow_with_inclination() {
+        assert_eq!(eta_perp(1.55, 0.0), 1.55);
+        assert!((eta_par(1.55, 0.0) - 1.55).abs() < 1e-15);
+        assert!(eta_perp(1.55, 1.0) > 1.55 && eta_par(1.55, 1.0) < 1.55);
+        // η′ η″ = η² (seed 003's two indices are reciprocal through η²).
+        assert!((eta_perp(1.55, 0.7) * eta_par(1.55, 0.7) - 1.55f64.powi(2)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn deflection_of_the_reflection_and_the_central_transmission() {
+        assert!((azimuthal_deflection(0, 0.5, 1.55) + 2.0 * 0.5f64.asin()).abs() < 1e-15);
+        assert!((azimuthal_deflection(1, 0.0, 1.55) - PI).abs() < 1e-15);
+        // Antisymmetric in h about pπ.
+        let a = azimuthal_deflection(2, 0.3, 1.7) - 2.0 * PI;
+        let b = azimuthal_deflection(2, -0.3, 1.7) - 2.0 * PI;
+        assert!((a + b).abs() < 1e-14);
+    }
+}

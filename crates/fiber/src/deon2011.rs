@@ -1,0 +1,155 @@
+//! The energy-conserving model of d'Eon et al. 2011 (seed 000 eq. 4–5), with the importance
+//! sampling of d'Eon et al. 2013.
+//!
+//! Each lobe p is M(v_p, θ_cone,p, θ_o) · N_p(φ). The lobes are separable: v_p and the cone
+//! shift are constants of the fiber. They are the first-order Nusselt perturbations of seed 000
+//! §2.2 at normal incidence (h = 0, θ = 0), so that the model and the non-separable one agree
+//! there: with Beckmann roughness β the per-axis micro-normal slope deviation is β/√2, and
+//! the lobe widths are √v = β√2 (R), β(η − 1) (TT), β(2η − 1) (TRT), β(3η − 1) (TRRT and rest);
+//! the cone shifts are 2α (R), −2(η − 1)α (TT), −(4η − 2)α (TRT), −(6η − 2)α (TRRT, rest).
+//!
+//! A(p, h) depends on θ_i alone, so sampling first picks h and p, then θ_o, then φ, each
+//! exactly; the sampled density is Σ_p M_p · N_p with A replaced by the selection probability
+//! of p (see [`Weighting::Selection`]), and every sample's weight is S / pdf.
+//!
+//! Reciprocity: M with a cone at −θ_i + shift is not symmetric under exchanging ω_i and ω_o
+//! (seed 000 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
+
+use crate::azimuthal::{AzimuthalScattering, Weighting};
+use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::frame::{FiberAngles, wrap_pi};
+use crate::lobe::{Lobe, LobeValues};
+use crate::longitudinal::LongitudinalLobe;
+use crate::model::{FiberModel, FiberSample, select_and_remap};
+use crate::params::{FiberParams, ParamError};
+use crate::special::normal_quantile;
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// The d'Eon et al. 2011 fiber model.
+#[derive(Clone, Debug)]
+pub struct DEon2011 {
+    params: FiberParams,
+    azimuthal: AzimuthalScattering,
+    /// Per lobe: longitudinal variance v_p and cone shift added to −θ_i.
+    longitudinal: [(f64, f64); 5],
+}
+
+impl DEon2011 {
+    pub fn new(params: FiberParams) -> Result<Self, ParamError> {
+        params.validate()?;
+        let (b, e, a) = (params.beta, params.eta, params.alpha);
+        let lobe = |width: f64, shift: f64| ((b * width).powi(2), shift * a);
+        let trrt = lobe(3.0 * e - 1.0, -(6.0 * e - 2.0));
+        let longitudinal = [
+            lobe(std::f64::consts::SQRT_2, 2.0),
+            lobe(e - 1.0, -2.0 * (e - 1.0)),
+            lobe(2.0 * e - 1.0, -(4.0 * e - 2.0)),
+            trrt,
+            trrt,
+        ];
+        let azimuthal = AzimuthalScattering::new(params.eta, params.beta, params.mu_a);
+        Ok(Self {
+            params,
+            azimuthal,
+            longitudinal,
+        })
+    }
+
+    pub fn params(&self) -> &FiberParams {
+        &self.params
+    }
+
+    /// The longitudinal lobe of mode p for light at θ_i.
+    pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
+        let (v, shift) = self.longitudinal[p];
+        LongitudinalLobe::new(v, -theta_i + shift)
+    }
+
+    fn azimuthal(
+        &self,
+        p: usize,
+        theta_i: f64,
+        theta_d: f64,
+        phi: f64,
+        weighting: Weighting,
+    ) -> DVec3 {
+        self.azimuthal.eval(p, theta_i, theta_d, phi, weighting)
+    }
+}
+
+impl FiberModel for DEon2011 {
+    fn name(&self) -> &'static str {
+        "deon2011"
+    }
+
+    fn eval(&self, wi: FiberAngles, wo: FiberAngles) -> LobeValues {
+        let theta_d = 0.5 * (wo.theta - wi.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let mut out = LobeValues::default();
+        for lobe in Lobe::ALL {
+            let p = lobe.index();
+            let m = self.longitudinal(p, wi.theta).eval(wo.theta);
+            out[lobe] = m * self.azimuthal(p, wi.theta, theta_d, phi, Weighting::Attenuation);
+        }
+        out
+    }
+
+    fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
+        let h = 2.0 * u[0] - 1.0;
+        let (p, u_phi) = select_and_remap(&self.azimuthal.selection(wi.theta, h), u[1]);
+        let theta_o = self.longitudinal(p, wi.theta).sample(u[2], u[3]);
+        let theta_d = 0.5 * (theta_o - wi.theta);
+        let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
+        let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
+        finish_sample(self, wi, wo, Lobe::from_index(p), 1)
+    }
+
+    fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
+        let theta_d = 0.5 * (wo.theta - wi.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        (0..5)
+            .map(|p| {
+                self.longitudinal(p, wi.theta).eval(wo.theta)
+                    * self
+                        .azimuthal(p, wi.theta, theta_d, phi, Weighting::Selection)
+                        .x
+            })
+            .sum()
+    }
+}
+
+/// φ for lobe p entering at h: Φ(p, h) plus a wrapped-Gaussian offset (d'Eon 2013); R has
+/// no offset and the p ≥ 4 remainder is uniform.
+pub(crate) fn sample_phi(az: &AzimuthalScattering, p: usize, h: f64, theta_d: f64, u: f64) -> f64 {
+    match p {
+        0 => azimuthal_deflection(0, h, az.eta),
+        4 => 2.0 * PI * u - PI,
+        _ => {
+            let offset = az.v_n[p].sqrt() * normal_quantile(u.clamp(1e-16, 1.0 - 1e-16));
+            azimuthal_deflection(p as u32, h, eta_perp(az.eta, theta_d)) + offset
+        }
+    }
+}
+
+/// Completes a sample with its density and weight S / pdf; `None` where either vanishes.
+pub(crate) fn finish_sample(
+    model: &dyn FiberModel,
+    wi: FiberAngles,
+    wo: FiberAngles,
+    lobe: Lobe,
+    iterations: u32,
+) -> Option<FiberSample> {
+    let pdf = model.pdf(wi, wo);
+    if !(pdf > 0.0 && pdf.is_finite()) {
+        return None;
+    }
+    let weight = model.eval(wi, wo).total() / pdf;
+    weight.is_finite().then_some(FiberSample {
+        wo,
+        weight,
+        pdf,
+        lobe,
+        iterations,
+    })
+}

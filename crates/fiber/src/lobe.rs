@@ -1,0 +1,78 @@
+//! Lobes (scattering modes) and per-lobe values.
+
+use glam::DVec3;
+use serde::Serialize;
+
+/// A scattering mode, by its number p of internal path segments (DESIGN.md §2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub enum Lobe {
+    R,
+    TT,
+    TRT,
+    TRRT,
+    /// Every mode with p ≥ 4.
+    Rest,
+}
+
+impl Lobe {
+    pub const ALL: [Lobe; 5] = [Lobe::R, Lobe::TT, Lobe::TRT, Lobe::TRRT, Lobe::Rest];
+
+    /// p, with `Rest` reported as 4.
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+
+    pub const fn from_index(p: usize) -> Lobe {
+        match p {
+            0 => Lobe::R,
+            1 => Lobe::TT,
+            2 => Lobe::TRT,
+            3 => Lobe::TRRT,
+            _ => Lobe::Rest,
+        }
+    }
+
+    /// The file and JSON name (DESIGN.md §5).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Lobe::R => "R",
+            Lobe::TT => "TT",
+            Lobe::TRT => "TRT",
+            Lobe::TRRT => "TRRT",
+            Lobe::Rest => "rest",
+        }
+    }
+}
+
+/// An RGB value for each lobe, indexed by [`Lobe::index`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LobeValues(pub [DVec3; 5]);
+
+impl LobeValues {
+    pub fn get(&self, lobe: Lobe) -> DVec3 {
+        self.0[lobe.index()]
+    }
+
+    pub fn total(&self) -> DVec3 {
+        self.0.iter().copied().sum()
+    }
+}
+
+impl std::ops::Index<Lobe> for LobeValues {
+    type Output = DVec3;
+    fn index(&self, lobe: Lobe) -> &DVec3 {
+        &self.0[lobe.index()]
+    }
+}
+
+impl std::ops::IndexMut<Lobe> for LobeValues {
+    fn index_mut(&mut self, lobe: Lobe) -> &mut DVec3 {
+        &mut self.0[lobe.index()]
+    }
+}
+
+/// The channel mean of an RGB value: what CSV and JSON outputs report, and what lobe selection
+/// in importance sampling is proportional to.
+pub fn channel_mean(v: DVec3) -> f64 {
+    (v.x + v.y + v.z) / 3.0
+}
