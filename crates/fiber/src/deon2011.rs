@@ -60,6 +60,10 @@ impl DEon2011 {
         &self.params
     }
 
+    pub(crate) fn azimuthal_scattering(&self) -> &AzimuthalScattering {
+        &self.azimuthal
+    }
+
     /// The longitudinal lobe of mode p for light at θ_i.
     pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
         let (v, shift) = self.longitudinal[p];

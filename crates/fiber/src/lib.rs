@@ -14,6 +14,8 @@ pub mod latlong;
 pub mod lobe;
 pub mod longitudinal;
 pub mod model;
+pub mod nonseparable;
+pub mod nusselt;
 pub mod params;
 pub mod special;
 
@@ -22,4 +24,5 @@ pub use frame::{FiberAngles, FiberFrame, wrap_pi};
 pub use latlong::{LatLongGrid, LatLongImage};
 pub use lobe::{Lobe, LobeValues};
 pub use model::{FiberModel, FiberSample};
+pub use nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
