@@ -1,1 +1,28 @@
-//! placeholder until this crate's issue lands.
+//! Hair geometry for cuticle: the cyHair `.hair` format ([`HairFile`]), the in-memory
+//! [`Groom`] a renderer reads (flat point arrays, strand offsets, tangents, bounds, per-strand
+//! [`Appearance`]), and procedural grooms ([`procedural`]).
+//!
+//! Conventions:
+//! - Positions and thickness share one unit. `.hair` files keep theirs; procedural grooms are
+//!   in centimetres.
+//! - Procedural grooms are **+z up**, like the cyHair models (which come from 3ds Max): the head
+//!   is centred at the origin, the face looks toward **−y**, the head's left is +x. A camera in
+//!   front of the face sits at −y looking along +y.
+//! - Thickness is the fiber's diameter at a point.
+//! - Appearance units follow DESIGN.md §5 (σ_a per unit radius, α in degrees).
+
+pub mod appearance;
+pub mod error;
+pub mod geometry;
+pub mod groom;
+pub mod hair_file;
+pub mod procedural;
+pub mod summary;
+
+mod convert;
+
+pub use appearance::{Absorption, Appearance};
+pub use error::{GroomError, HairArray, HairFileError, ParamsError};
+pub use geometry::Aabb;
+pub use groom::{Groom, GroomParts, Strand};
+pub use hair_file::{ArrayFlags, HairDefaults, HairFile, HairInfo};
