@@ -12,11 +12,11 @@ const MAX_STRAND_POINTS: usize = u16::MAX as usize + 1;
 impl HairFile {
     /// The groom this file describes, with absent arrays filled from the defaults (thickness)
     /// or left absent (colour, transparency).
-    pub fn into_groom(self) -> Result<Groom, HairFileError> {
+    pub fn into_groom(mut self) -> Result<Groom, HairFileError> {
+        let positions = self.points.take().ok_or(HairFileError::NoPoints)?;
         let strand_offsets = std::iter::once(0)
             .chain(self.strand_ranges().map(|r| r.end as u32))
             .collect();
-        let positions = self.points.ok_or(HairFileError::NoPoints)?;
         let thickness = self
             .thickness
             .unwrap_or_else(|| vec![self.defaults.thickness; positions.len()]);

@@ -81,7 +81,7 @@ impl HairFileSummary {
             arrays: file.flags(),
             defaults: file.defaults,
             info: file.info.text(),
-            points_per_strand: Stats::of(file.strand_point_counts().map(|n| n as f64)),
+            points_per_strand: points_per_strand(file),
             bounds: points.map(|p| Aabb::of_points(p).into()),
             strand_length: points.and_then(|p| {
                 Stats::of(
@@ -89,6 +89,16 @@ impl HairFileSummary {
                         .map(|r| f64::from(polyline_length(&p[r]))),
                 )
             }),
+        }
+    }
+}
+
+/// Without a segments array every strand has the default count: no need to visit them all.
+fn points_per_strand(file: &HairFile) -> Option<Stats> {
+    match &file.segments {
+        Some(segments) => Stats::of(segments.iter().map(|&s| f64::from(s) + 1.0)),
+        None => {
+            Stats::of((file.strand_count > 0).then_some(f64::from(file.defaults.segments) + 1.0))
         }
     }
 }

@@ -91,3 +91,62 @@ pub fn comb_direction(root_dir: Vec3, normal: Vec3, lift: f32) -> Vec3 {
 pub fn side_direction(normal: Vec3) -> Vec3 {
     Vec3::Z.cross(normal).try_normalize().unwrap_or(Vec3::X)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::procedural::random::Stream;
+    use std::f32::consts::PI;
+
+    #[test]
+    fn hairline_is_high_at_the_forehead_and_low_at_the_nape() {
+        let degrees = |a: f32| hairline_elevation(a).to_degrees();
+        assert!((degrees(0.0) - 35.0).abs() < 1e-3);
+        assert!((degrees(PI / 2.0) - 10.0).abs() < 1e-3);
+        assert!((degrees(-PI / 2.0) - 10.0).abs() < 1e-3);
+        assert!((degrees(PI) + 30.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn roots_lie_above_the_hairline() {
+        let head = Head::default();
+        let rng = &mut Random::for_object(3, Stream::Strand, 0);
+        for _ in 0..2000 {
+            let d = head.sample_scalp_direction(rng);
+            assert!((d.length() - 1.0).abs() < 1e-5);
+            let azimuth = d.x.atan2(d.y);
+            assert!(d.z.asin() >= hairline_elevation(azimuth) - 1e-5, "{d}");
+        }
+    }
+
+    #[test]
+    fn points_inside_are_pushed_onto_the_grown_surface() {
+        let head = Head::default();
+        let inside = Vec3::new(1.0, 2.0, 3.0);
+        let out = head.push_out(inside, 0.5).unwrap();
+        let r = Vec3::from_array(head.radii) + 0.5;
+        assert!(((out / r).length() - 1.0).abs() < 1e-5);
+        let same_ray = (out / r).normalize().dot((inside / r).normalize());
+        assert!((same_ray - 1.0).abs() < 1e-5);
+        assert_eq!(head.push_out(Vec3::new(0.0, 0.0, 20.0), 0.5), None);
+    }
+
+    #[test]
+    fn combing_runs_along_the_scalp_and_front_hair_goes_back() {
+        let head = Head::default();
+        let rng = &mut Random::for_object(4, Stream::Strand, 0);
+        for _ in 0..500 {
+            let d = head.sample_scalp_direction(rng);
+            let normal = head.normal_at(head.surface_point(d));
+            let flat = comb_direction(d, normal, 0.0);
+            assert!(flat.dot(normal).abs() < 1e-4, "tangent to the scalp");
+            if d.y > 0.0 {
+                assert!(flat.y <= 1e-4, "front hair goes back: {flat} at {d}");
+            }
+            assert!(
+                comb_direction(d, normal, 0.5).dot(normal) > 0.1,
+                "lifted off the scalp"
+            );
+        }
+    }
+}

@@ -151,3 +151,105 @@ fn require(
         Err(ParamsError::OutOfRange { name, rule, value })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::procedural::Preset;
+
+    #[test]
+    fn presets_are_valid() {
+        for preset in Preset::ALL {
+            assert_eq!(preset.params().validate(), Ok(()), "{preset}");
+        }
+    }
+
+    #[test]
+    fn out_of_range_controls_are_named() {
+        let base = Preset::Straight.params();
+        let cases = [
+            (
+                "min_points",
+                GroomParams {
+                    min_points: 1,
+                    ..base.clone()
+                },
+            ),
+            (
+                "max_points",
+                GroomParams {
+                    max_points: 10,
+                    ..base.clone()
+                },
+            ),
+            (
+                "length",
+                GroomParams {
+                    length: 0.0,
+                    ..base.clone()
+                },
+            ),
+            (
+                "wavelength",
+                GroomParams {
+                    wavelength: f32::NAN,
+                    ..base.clone()
+                },
+            ),
+            (
+                "gravity",
+                GroomParams {
+                    gravity: -1.0,
+                    ..base.clone()
+                },
+            ),
+            (
+                "clumping",
+                GroomParams {
+                    clumping: 1.5,
+                    ..base.clone()
+                },
+            ),
+            (
+                "strands",
+                GroomParams {
+                    strands: MAX_STRANDS + 1,
+                    ..base.clone()
+                },
+            ),
+            (
+                "head radius",
+                GroomParams {
+                    head: Head {
+                        radii: [1.0, 0.0, 1.0],
+                    },
+                    ..base.clone()
+                },
+            ),
+        ];
+        for (name, params) in cases {
+            let err = params.validate().unwrap_err();
+            assert!(
+                matches!(err, ParamsError::OutOfRange { name: n, .. } if n == name),
+                "{err}"
+            );
+        }
+        let eta = Appearance {
+            eta: 0.5,
+            ..base.appearance
+        };
+        let err = GroomParams {
+            appearance: eta,
+            ..base
+        }
+        .validate()
+        .unwrap_err();
+        assert!(matches!(
+            err,
+            ParamsError::OutOfRange {
+                name: "appearance",
+                ..
+            }
+        ));
+    }
+}

@@ -115,3 +115,27 @@ impl FromStr for Preset {
             .ok_or_else(|| ParamsError::UnknownPreset(s.to_string()))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_parse_back_to_their_preset() {
+        for preset in Preset::ALL {
+            assert_eq!(preset.name().parse::<Preset>(), Ok(preset));
+        }
+        assert_eq!("CURLY".parse::<Preset>(), Ok(Preset::Curly));
+        assert_eq!(
+            "afro".parse::<Preset>(),
+            Err(ParamsError::UnknownPreset("afro".into()))
+        );
+    }
+
+    #[test]
+    fn the_default_preset_is_the_scene_groom() {
+        let p = Preset::default().params();
+        assert_eq!(Preset::default(), Preset::Straight);
+        assert_eq!((p.strands, p.min_points, p.max_points), (10_000, 20, 30));
+    }
+}

@@ -59,3 +59,39 @@ fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn objects_get_distinct_reproducible_streams() {
+        let draw = |seed, stream, index| Random::for_object(seed, stream, index).0.next_u64();
+        assert_eq!(draw(5, Stream::Strand, 9), draw(5, Stream::Strand, 9));
+        assert_ne!(draw(5, Stream::Strand, 9), draw(5, Stream::Strand, 10));
+        assert_ne!(draw(5, Stream::Strand, 9), draw(5, Stream::Clump, 9));
+        assert_ne!(draw(5, Stream::Strand, 9), draw(6, Stream::Strand, 9));
+    }
+
+    #[test]
+    fn distributions_have_their_moments() {
+        let rng = &mut Random::for_object(1, Stream::Strand, 0);
+        let n = 20_000;
+        let units: Vec<f32> = (0..n).map(|_| rng.unit()).collect();
+        assert!(units.iter().all(|u| (0.0..1.0).contains(u)));
+        let mean = units.iter().sum::<f32>() / n as f32;
+        assert!((mean - 0.5).abs() < 0.01, "{mean}");
+        let normals: Vec<f32> = (0..n).map(|_| rng.normal()).collect();
+        let mean = normals.iter().sum::<f32>() / n as f32;
+        let var = normals.iter().map(|x| (x - mean).powi(2)).sum::<f32>() / n as f32;
+        assert!(
+            mean.abs() < 0.03 && (var - 1.0).abs() < 0.05,
+            "{mean} {var}"
+        );
+        let ints: Vec<usize> = (0..n).map(|_| rng.int_inclusive(20, 30)).collect();
+        assert_eq!(
+            (ints.iter().min(), ints.iter().max()),
+            (Some(&20), Some(&30))
+        );
+    }
+}
