@@ -20,6 +20,8 @@ enum Command {
     Lobes(commands::lobes::Args),
     /// Albedo ∫S dω of a fiber model over a grid of incident angles (white furnace).
     Furnace(commands::furnace::Args),
+    /// Hair grooms: describe a .hair file (info) or write a procedural one (make).
+    Groom(commands::groom::Args),
 }
 
 fn main() {
@@ -27,6 +29,7 @@ fn main() {
     let result = match cli.command {
         Command::Lobes(args) => commands::lobes::run(args),
         Command::Furnace(args) => commands::furnace::run(args),
+        Command::Groom(args) => commands::groom::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

@@ -1,2 +1,3 @@
 pub mod furnace;
 pub mod lobes;
+pub mod groom;
