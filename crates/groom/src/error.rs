@@ -29,7 +29,7 @@ impl fmt::Display for HairArray {
 /// Why a `.hair` file could not be read, or a [`crate::HairFile`] could not be written.
 #[derive(Debug, Error)]
 pub enum HairFileError {
-    #[error("I/O error: {0}")]
+    #[error(transparent)]
     Io(#[from] std::io::Error),
 
     #[error("not a .hair file: it is {len} bytes, shorter than the 128-byte header")]
@@ -92,7 +92,7 @@ pub enum HairFileError {
     #[error("the file has no points array, so it holds no hair geometry")]
     NoPoints,
 
-    #[error("the file's strands do not form a groom: {0}")]
+    #[error("the file's strands do not form a groom")]
     Groom(#[from] GroomError),
 }
 
@@ -139,6 +139,6 @@ pub enum ParamsError {
     #[error("unknown preset {0:?}; the presets are straight, wavy and curly")]
     UnknownPreset(String),
 
-    #[error("these parameters give a broken groom: {0}")]
+    #[error("these parameters give a broken groom")]
     Degenerate(#[from] GroomError),
 }
