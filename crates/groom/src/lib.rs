@@ -5,9 +5,10 @@
 //! Conventions:
 //! - Positions and thickness share one unit. `.hair` files keep theirs; procedural grooms are
 //!   in centimetres.
-//! - Procedural grooms are **+z up**, like the cyHair models (which come from 3ds Max): the head
-//!   is centred at the origin, the face looks toward **−y**, the head's left is +x. A camera in
-//!   front of the face sits at −y looking along +y.
+//! - Procedural grooms are **+z up**, like the cyHair models: the head
+//!   is centred at the origin and the face looks toward **+y** (as in `straight.hair`, whose
+//!   hairline is high on the +y side), so the person's right is +x. A camera in front of the
+//!   face sits on the +y axis looking along −y, with −x to its right.
 //! - Thickness is the fiber's diameter at a point.
 //! - Appearance units follow DESIGN.md §5 (σ_a per unit radius, α in degrees).
 

@@ -8,7 +8,7 @@
 //! [`HairFile`] mirrors the file exactly, so that reading and writing back gives the same
 //! bytes; [`crate::Groom`] is the form a renderer works with. The reader checks every claim of
 //! the header against the file's size before allocating anything, and refuses a broken file
-//! with one [`HairFileError`].
+//! with one [`crate::HairFileError`].
 
 mod header;
 mod layout;
