@@ -7,22 +7,27 @@ pub mod absorption;
 pub mod attenuation;
 pub mod azimuthal;
 pub mod bravais;
+pub mod cubic;
 pub mod deon2011;
 pub mod frame;
 pub mod fresnel;
 pub mod latlong;
 pub mod lobe;
 pub mod longitudinal;
+pub mod marschner2003;
 pub mod model;
 pub mod nonseparable;
 pub mod nusselt;
 pub mod params;
 pub mod special;
+#[cfg(test)]
+pub(crate) mod testing;
 
 pub use deon2011::DEon2011;
 pub use frame::{FiberAngles, FiberFrame, wrap_pi};
 pub use latlong::{LatLongGrid, LatLongImage};
 pub use lobe::{Lobe, LobeValues};
+pub use marschner2003::Marschner2003;
 pub use model::{FiberModel, FiberSample};
 pub use nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
