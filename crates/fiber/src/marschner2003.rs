@@ -134,10 +134,8 @@ pub enum MarschnerError {
     },
 }
 
-/// The largest |α_R|: twice the largest scale tilt, so that every valid [`FiberParams`] maps.
-const MAX_ALPHA_R: f64 = 2.0 * crate::params::MAX_ALPHA_DEG * PI / 180.0;
-/// The largest β_R: √2 times the largest roughness, for the same reason.
-const MAX_BETA_R: f64 = SQRT_2 * MAX_BETA;
+/// The largest |α_R|: the largest scale tilt, which [`Marschner2003::from_fiber`] maps to it.
+const MAX_ALPHA_R: f64 = crate::params::MAX_ALPHA_DEG.to_radians();
 
 impl MarschnerParams {
     /// Checks every field, returning the first fault.
@@ -200,14 +198,9 @@ impl MarschnerParams {
                 "alpha_r",
                 a,
                 a.abs() <= MAX_ALPHA_R,
-                "[-0.698, 0.698] radians",
+                "[-0.349, 0.349] radians",
             ),
-            (
-                "beta_r",
-                b,
-                b > 0.0 && b <= MAX_BETA_R,
-                "(0, 1.414] radians",
-            ),
+            ("beta_r", b, b > 0.0 && b <= MAX_BETA, "(0, 1] radians"),
             // η* stays above 1 for every η > 1 exactly when 1/√2 < a < √2 (seed 004 eq. 24).
             (
                 "eccentricity",
@@ -269,14 +262,17 @@ impl Marschner2003 {
         })
     }
 
-    /// The model for the physical parameters every model shares: η and μ_a as given, the R
-    /// lobe of d'Eon 2011 (β_R = √2 β, α_R = 2α), the rest of Table 1's defaults.
+    /// The model for the physical parameters every model shares: η and μ_a as given, an R
+    /// lobe on d'Eon 2011's (its cone at θ_o = −θ_i + 2α with width √2 β), the rest of
+    /// Table 1's defaults. M_R is a Gaussian in θ_h = (θ_i + θ_o)/2, so its cone sits at
+    /// θ_o = −θ_i + 2α_R with width 2β_R in θ_o: matching takes α_R = α and β_R = β/√2.
+    /// (Setting α_R = 2α and β_R = √2 β, d'Eon's θ_o figures, would double both.)
     pub fn from_fiber(fiber: &FiberParams) -> Result<Self, MarschnerError> {
         fiber.validate()?;
         Self::new(MarschnerParams {
             eta: fiber.eta,
-            alpha_r: 2.0 * fiber.alpha,
-            beta_r: SQRT_2 * fiber.beta,
+            alpha_r: fiber.alpha,
+            beta_r: fiber.beta / SQRT_2,
             mu_a: fiber.mu_a,
             ..MarschnerParams::default()
         })
@@ -1200,6 +1196,37 @@ mod tests {
     }
 
     #[test]
+    fn weights_average_to_the_integral_of_s() {
+        // The estimator Σ weight / draws (a rejected draw counts 0) is unbiased only if the
+        // sampling covers every direction where S > 0: compare it with quadrature of S.
+        let m = model(MarschnerParams {
+            mu_a: DVec3::new(0.1, 0.3, 0.9),
+            ..Default::default()
+        });
+        let wi = FiberAngles::new(0.3, 0.0);
+        let integral = composite(-FRAC_PI_2, FRAC_PI_2, 24, |theta_o| {
+            theta_o.cos()
+                * composite(-PI, PI, 24, |phi| {
+                    m.eval(wi, FiberAngles::new(theta_o, phi)).total().y
+                })
+        });
+        let mut rng = <rand_pcg::Pcg64Mcg as rand_core::SeedableRng>::seed_from_u64(5);
+        let n = 1 << 18;
+        let (mut sum, mut sum2) = (0.0, 0.0);
+        for _ in 0..n {
+            let w = m
+                .sample(wi, crate::testing::uniform4(&mut rng))
+                .map_or(0.0, |s| s.weight.y);
+            sum += w;
+            sum2 += w * w;
+        }
+        let mean = sum / n as f64;
+        let sigma = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+        eprintln!("Σ w / n = {mean:.5} ± {sigma:.5}, ∫ S dω = {integral:.5}");
+        assert!((mean - integral).abs() < 4.0 * sigma + 1e-3 * integral);
+    }
+
+    #[test]
     fn parameters_are_validated_field_by_field() {
         assert!(MarschnerParams::default().validate().is_ok());
         let bad = |f: fn(&mut MarschnerParams)| {
@@ -1243,8 +1270,14 @@ mod tests {
         let m = Marschner2003::from_fiber(&fiber).unwrap();
         assert_eq!(m.params().eta, fiber.eta);
         assert_eq!(m.params().mu_a, fiber.mu_a);
-        assert!((m.params().beta_r - SQRT_2 * fiber.beta).abs() < 1e-15);
-        assert!((m.params().alpha_r - 2.0 * fiber.alpha).abs() < 1e-15);
+        // The R lobe's cone and width in θ_o are d'Eon 2011's.
+        let deon = crate::DEon2011::new(fiber).unwrap();
+        for &theta_i in &[-0.7, 0.0, 0.4] {
+            let cone = deon.longitudinal(0, theta_i);
+            let lobe = m.lobes[0];
+            assert!((-theta_i + 2.0 * lobe.alpha - cone.theta_cone).abs() < 1e-15);
+            assert!((2.0 * lobe.beta - cone.v.sqrt()).abs() < 1e-15);
+        }
         let extreme = FiberParams {
             alpha: 20f64.to_radians(),
             beta: 1.0,
