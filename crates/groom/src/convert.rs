@@ -11,8 +11,10 @@ const MAX_STRAND_POINTS: usize = u16::MAX as usize + 1;
 
 impl HairFile {
     /// The groom this file describes, with absent arrays filled from the defaults (thickness)
-    /// or left absent (colour, transparency).
+    /// or left absent (colour, transparency). The file is validated first, as its fields are
+    /// public and may have been changed since it was read.
     pub fn into_groom(mut self) -> Result<Groom, HairFileError> {
+        self.validate()?;
         let positions = self.points.take().ok_or(HairFileError::NoPoints)?;
         let strand_offsets = std::iter::once(0)
             .chain(self.strand_ranges().map(|r| r.end as u32))

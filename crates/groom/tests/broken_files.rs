@@ -256,3 +256,15 @@ fn messages_say_what_is_wrong() {
     .to_string();
     assert!(message.contains("ends early"), "{message}");
 }
+
+#[test]
+fn an_edited_file_is_checked_before_it_becomes_a_groom() {
+    let (mut file, _) = full_file();
+    file.segments = None;
+    file.strand_count = MAX_STRANDS;
+    let err = file.into_groom().unwrap_err();
+    assert!(
+        matches!(err, HairFileError::PointCountMismatch { .. }),
+        "{err}"
+    );
+}
