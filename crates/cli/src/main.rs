@@ -2,6 +2,7 @@
 //! library function, and writes its files through [`output`] (atomically, with a JSON record).
 
 mod commands;
+mod latlong_io;
 mod output;
 mod progress;
 
@@ -22,6 +23,10 @@ enum Command {
     Furnace(commands::furnace::Args),
     /// Hair grooms: describe a .hair file (info) or write a procedural one (make).
     Groom(commands::groom::Args),
+    /// Monte Carlo ground truth of a rough fiber: lobe images, azimuthal.csv, sim.json.
+    Sim(commands::sim::Args),
+    /// The ground-truth simulation over a grid of configurations, resumable and shardable.
+    Sweep(commands::sweep::Args),
 }
 
 fn main() {
@@ -30,6 +35,8 @@ fn main() {
         Command::Lobes(args) => commands::lobes::run(args),
         Command::Furnace(args) => commands::furnace::run(args),
         Command::Groom(args) => commands::groom::run(args),
+        Command::Sim(args) => commands::sim::run(args),
+        Command::Sweep(args) => commands::sweep::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

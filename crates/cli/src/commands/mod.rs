@@ -1,3 +1,5 @@
 pub mod furnace;
 pub mod lobes;
 pub mod groom;
+pub mod sim;
+pub mod sweep;
