@@ -21,6 +21,18 @@ pub enum Loss {
     Cutoff,
 }
 
+/// Lost weight per kind, summed in floating point over one chunk of rays (always in the same
+/// order, so still deterministic) and then added to a [`Tally`] once.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LossSums([DVec3; 3]);
+
+impl LossSums {
+    #[inline]
+    pub fn add(&mut self, why: Loss, w: DVec3) {
+        self.0[why as usize] += w;
+    }
+}
+
 /// Fixed-point sums for one group of rays.
 #[derive(Clone, Debug)]
 pub struct Tally {
@@ -70,6 +82,13 @@ impl Tally {
         let row = &mut self.losses[why as usize];
         for (c, v) in row.iter_mut().zip(w.to_array()) {
             *c += to_signed(v);
+        }
+    }
+
+    /// Records a chunk's summed losses.
+    pub fn lose_all(&mut self, sums: &LossSums) {
+        for why in [Loss::Shadowing, Loss::BackFacing, Loss::Cutoff] {
+            self.lose(why, sums.0[why as usize]);
         }
     }
 

@@ -52,14 +52,15 @@ impl Surface {
         if cos_i <= 0.0 {
             return Event::BackFacing;
         }
-        let local = sample_normal(self.beta, rng.uniform(), rng.disk());
+        let (xi, choice) = rng.pair();
+        let local = sample_normal(self.beta, xi, rng.disk());
         let m = frame.to_world(local);
         let c = wi.dot(m);
         if c <= 0.0 {
             return Event::Shadowed;
         }
         let f = fresnel(c, self.eta);
-        let refracted = !f.reflects(rng.uniform());
+        let refracted = !f.reflects(choice);
         let dir = if refracted {
             refract(wi, m, c, f.g, self.inv_eta)
         } else {

@@ -12,6 +12,7 @@
 //!
 //! [`sweep`] runs many configurations into folders, resumably; [`grid`] defines them.
 
+mod absorption;
 mod accumulate;
 mod atomic;
 pub mod beckmann;
@@ -21,6 +22,7 @@ pub mod dielectric;
 mod erf;
 pub mod grid;
 mod interface;
+mod ln;
 pub mod params;
 pub mod path;
 pub mod record;

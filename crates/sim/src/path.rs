@@ -1,7 +1,8 @@
 //! One light path through the fiber, from its entry offset h until it leaves, is lost, or is
 //! cut off, recorded into a [`Tally`].
 
-use crate::accumulate::{Loss, Tally};
+use crate::absorption::Absorption;
+use crate::accumulate::{Loss, LossSums, Tally};
 use crate::bin::Binner;
 use crate::cylinder::{advance, chord, entry_point, incident_ray, macro_normal};
 use crate::interface::{Event, Surface};
@@ -20,7 +21,7 @@ pub struct Fiber {
     tilt: Tilt,
     outside: Surface,
     inside: Surface,
-    mu_a: DVec3,
+    absorption: Absorption,
     absorbs: bool,
     bins: Binner,
 }
@@ -49,16 +50,17 @@ impl Fiber {
             tilt: Tilt::new(p.alpha),
             outside: Surface::new(p.beta, p.eta),
             inside: Surface::new(p.beta, 1.0 / p.eta),
-            mu_a: DVec3::from_array(p.mu_a),
-            absorbs: p.mu_a.iter().any(|&m| m > 0.0),
+            absorption: Absorption::new(p.mu_a),
+            absorbs: Absorption::new(p.mu_a).absorbs(),
             bins: Binner::new(p.grid),
         }
     }
 
     /// Traces the path entering at offset h. The path's RGB weight is w · exp(−μ_a L): the
     /// surface sampling weights times Beer–Lambert over the internal length L. Every change of
-    /// weight is recorded, so exits + losses + absorption = 1 per path.
-    pub fn trace(&self, h: f64, rng: &mut Sampler, tally: &mut Tally) {
+    /// weight is recorded (exits in `tally`, losses in `lost`), so exits + losses + absorption
+    /// = 1 per path.
+    pub fn trace(&self, h: f64, rng: &mut Sampler, tally: &mut Tally, lost: &mut LossSums) {
         let mut path = Path {
             p: entry_point(h),
             d: self.ray,
@@ -69,10 +71,10 @@ impl Fiber {
             shadowed: DVec3::ZERO,
         };
         let end = self.run(&mut path, rng);
-        tally.lose(Loss::Shadowing, path.shadowed);
+        lost.add(Loss::Shadowing, path.shadowed);
         match end {
             End::Exit(dir) => tally.exit(path.segments, self.bins.index(dir), path.w * path.atten),
-            End::Lost(why) => tally.lose(why, path.w * path.atten),
+            End::Lost(why) => lost.add(why, path.w * path.atten),
         }
     }
 
@@ -110,7 +112,7 @@ impl Fiber {
         let length = chord(path.p, dir);
         path.p = advance(path.p, dir, length);
         if self.absorbs {
-            path.atten *= (-self.mu_a * length).exp();
+            path.atten *= self.absorption.over(length);
         }
         path.inside = true;
         path.segments += 1;

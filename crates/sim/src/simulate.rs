@@ -1,7 +1,7 @@
 //! The parallel simulation: rays in fixed-size chunks, one random stream per chunk, tallies
 //! merged exactly (fixed point), so the result is bit-identical on any number of threads.
 
-use crate::accumulate::{LOBES, Loss, Tally};
+use crate::accumulate::{LOBES, Loss, LossSums, Tally};
 use crate::params::{SimError, SimParams};
 use crate::path::Fiber;
 use crate::rng::Sampler;
@@ -114,9 +114,11 @@ fn trace_chunk(fiber: &Fiber, params: &SimParams, c: u64, tally: &mut Tally) -> 
     let n = CHUNK.min(params.rays - first);
     let mut rng = Sampler::for_chunk(params.seed, c);
     let scale = 2.0 / n as f64;
+    let mut lost = LossSums::default();
     for k in 0..n {
         let h = -1.0 + (k as f64 + rng.uniform()) * scale;
-        fiber.trace(h, &mut rng, tally);
+        fiber.trace(h, &mut rng, tally, &mut lost);
     }
+    tally.lose_all(&lost);
     n
 }

