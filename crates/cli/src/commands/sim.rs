@@ -18,10 +18,10 @@ pub struct Args {
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     alpha_deg: f64,
     /// Beckmann roughness β > 0.
-    #[arg(long, default_value_t = 0.04)]
+    #[arg(long, default_value_t = 0.04, allow_negative_numbers = true)]
     beta: f64,
     /// Relative index of refraction η > 1.
-    #[arg(long, default_value_t = 1.55)]
+    #[arg(long, default_value_t = 1.55, allow_negative_numbers = true)]
     eta: f64,
     /// Interior absorption per unit radius: one value or r,g,b.
     #[arg(long, default_value = "0", value_parser = parse_mu_a, allow_negative_numbers = true)]
