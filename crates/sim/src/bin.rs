@@ -157,7 +157,7 @@ mod tests {
                     let pi = std::f64::consts::PI;
                     let row = ((pi / 2.0 - a.theta) / pi * grid.height as f64).fract();
                     let col = ((a.phi + pi) / grid.d_phi()).fract();
-                    let near = |f: f64| f < 1e-9 || f > 1.0 - 1e-9;
+                    let near = |f: f64| !(1e-9..=1.0 - 1e-9).contains(&f);
                     assert!(near(row) || near(col), "{d:?} far from any pixel edge");
                 }
             }
