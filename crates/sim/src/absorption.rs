@@ -12,6 +12,7 @@ use std::f64::consts::LN_2;
 #[derive(Clone, Debug)]
 pub struct Absorption {
     mu: DVec3,
+    absorbs: bool,
     table: [f64; 64],
 }
 
@@ -26,13 +27,15 @@ impl Absorption {
     pub fn new(mu_a: [f64; 3]) -> Self {
         Self {
             mu: DVec3::from_array(mu_a),
+            absorbs: mu_a.iter().any(|&m| m > 0.0),
             table: std::array::from_fn(|j| (-(j as f64) / 64.0).exp2()),
         }
     }
 
     /// Whether any channel absorbs.
+    #[inline]
     pub fn absorbs(&self) -> bool {
-        self.mu.max_element() > 0.0
+        self.absorbs
     }
 
     /// exp(−μ_a L) per channel for internal length L ≥ 0.

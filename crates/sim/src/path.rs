@@ -9,7 +9,7 @@ use crate::interface::{Event, Surface};
 use crate::params::SimParams;
 use crate::rng::Sampler;
 use crate::scale::Tilt;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// Surface events after which a path is cut off and its weight counted as `Loss::Cutoff`.
 pub const MAX_EVENTS: usize = 100;
@@ -22,14 +22,13 @@ pub struct Fiber {
     outside: Surface,
     inside: Surface,
     absorption: Absorption,
-    absorbs: bool,
     bins: Binner,
 }
 
 /// A path in flight: where it is, where it goes, and what it carries.
 struct Path {
     /// Surface point (y, z) on the unit circle.
-    p: glam::DVec2,
+    p: DVec2,
     /// Travel direction.
     d: DVec3,
     inside: bool,
@@ -51,7 +50,6 @@ impl Fiber {
             outside: Surface::new(p.beta, p.eta),
             inside: Surface::new(p.beta, 1.0 / p.eta),
             absorption: Absorption::new(p.mu_a),
-            absorbs: Absorption::new(p.mu_a).absorbs(),
             bins: Binner::new(p.grid),
         }
     }
@@ -111,7 +109,7 @@ impl Fiber {
     fn travel(&self, path: &mut Path, dir: DVec3) {
         let length = chord(path.p, dir);
         path.p = advance(path.p, dir, length);
-        if self.absorbs {
+        if self.absorption.absorbs() {
             path.atten *= self.absorption.over(length);
         }
         path.inside = true;
