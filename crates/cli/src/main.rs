@@ -27,6 +27,8 @@ enum Command {
     Sim(commands::sim::Args),
     /// The ground-truth simulation over a grid of configurations, resumable and shardable.
     Sweep(commands::sweep::Args),
+    /// Environment light: fit an environment map with J SRBF lights (fit).
+    Env(commands::env::Args),
 }
 
 fn main() {
@@ -37,6 +39,7 @@ fn main() {
         Command::Groom(args) => commands::groom::run(args),
         Command::Sim(args) => commands::sim::run(args),
         Command::Sweep(args) => commands::sweep::run(args),
+        Command::Env(args) => commands::env::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

@@ -5,7 +5,7 @@ use thiserror::Error;
 
 #[derive(Debug, Error)]
 pub enum LightError {
-    #[error("cannot read environment map {path}: {source}")]
+    #[error("cannot read environment map {path}")]
     Io {
         path: PathBuf,
         #[source]

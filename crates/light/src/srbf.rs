@@ -160,7 +160,9 @@ pub fn relative_l2_error(map: &EnvMap, lights: &[SrbfLight]) -> f64 {
             }
             (err, norm)
         })
-        .reduce(|| (0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
+        .collect::<Vec<_>>()
+        .into_iter()
+        .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1));
     if norm > 0.0 {
         (err / norm).sqrt()
     } else {

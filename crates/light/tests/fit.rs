@@ -168,3 +168,25 @@ fn bad_options_are_refused() {
         assert!(fit_srbf(&map, &options).is_err(), "{options:?}");
     }
 }
+
+/// Parallel sums are split into fixed ranges and combined in order, so the thread count (which
+/// would otherwise shape the summation tree) changes no bit of the result.
+#[test]
+fn a_fit_is_the_same_on_any_number_of_threads() {
+    let map = cuticle_light::ProceduralSky::default().to_env_map(256);
+    let options = FitOptions {
+        lights: 12,
+        fit_width: 64,
+        ..FitOptions::default()
+    };
+    let on = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| fit_srbf(&map, &options).unwrap())
+    };
+    let (one, three) = (on(1), on(3));
+    assert_eq!(one.lights, three.lights);
+    assert_eq!(one.relative_l2.to_bits(), three.relative_l2.to_bits());
+}

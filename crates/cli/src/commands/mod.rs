@@ -3,3 +3,4 @@ pub mod lobes;
 pub mod groom;
 pub mod sim;
 pub mod sweep;
+pub mod env;

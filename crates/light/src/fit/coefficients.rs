@@ -63,7 +63,9 @@ fn gram_and_rhs(target: &Target, basis: &Basis) -> (Vec<f64>, Vec<f64>) {
             gram.extend(rhs);
             gram
         })
-        .reduce(|| vec![0.0; n * n + 3 * n], add_vectors);
+        .collect::<Vec<_>>()
+        .into_iter()
+        .fold(vec![0.0; n * n + 3 * n], add_vectors);
     let (gram, rhs) = joined.split_at(n * n);
     (gram.to_vec(), rhs.to_vec())
 }

@@ -4,6 +4,7 @@
 //! errors, by Δω · luminance², so a cluster holding a compact sun gets a lobe centred on it and as
 //! narrow as it; coefficients come later from NNLS.
 
+use super::model::task_ranges;
 use super::params::Params;
 use super::target::Target;
 use crate::color::luminance_f64;
@@ -69,28 +70,26 @@ fn seeds(target: &Target, energy: &[f64], count: usize) -> Vec<DVec3> {
 /// resultant length R̄ = ‖Σ e ω‖ / Σ e (1 for a point, smaller for a spread cluster).
 fn lloyd_step(target: &Target, energy: &[f64], centres: &[DVec3]) -> (Vec<DVec3>, Vec<f64>) {
     let k = centres.len();
-    let (sums, masses) = (0..target.len())
+    let partial: Vec<(Vec<DVec3>, Vec<f64>)> = task_ranges(target.len())
         .into_par_iter()
-        .fold(
-            || (vec![DVec3::ZERO; k], vec![0.0; k]),
-            |(mut sums, mut masses), p| {
+        .map(|range| {
+            let (mut sums, mut masses) = (vec![DVec3::ZERO; k], vec![0.0; k]);
+            for p in range {
                 let dir = target.dirs[p];
                 let nearest = (0..k)
                     .max_by(|&a, &b| dir.dot(centres[a]).total_cmp(&dir.dot(centres[b])))
                     .unwrap_or(0);
                 sums[nearest] += dir * energy[p];
                 masses[nearest] += energy[p];
-                (sums, masses)
-            },
-        )
-        .reduce(
-            || (vec![DVec3::ZERO; k], vec![0.0; k]),
-            |(mut s, mut m), (s2, m2)| {
-                s.iter_mut().zip(s2).for_each(|(a, b)| *a += b);
-                m.iter_mut().zip(m2).for_each(|(a, b)| *a += b);
-                (s, m)
-            },
-        );
+            }
+            (sums, masses)
+        })
+        .collect();
+    let (mut sums, mut masses) = (vec![DVec3::ZERO; k], vec![0.0; k]);
+    for (s, m) in partial {
+        sums.iter_mut().zip(s).for_each(|(a, b)| *a += b);
+        masses.iter_mut().zip(m).for_each(|(a, b)| *a += b);
+    }
     let centres = (0..k)
         .map(|i| {
             if sums[i].length() > 0.0 {

@@ -88,11 +88,18 @@ impl Basis {
 
     /// Σ_p w_p ‖Σ_j L_j G̃_j(ω_p) − L_p‖² for coefficients `coefs`.
     pub fn sse(&self, target: &Target, coefs: &[DVec3]) -> f64 {
-        (0..target.len())
+        let partial: Vec<f64> = task_ranges(target.len())
             .into_par_iter()
-            .with_min_len(BATCH * BATCHES_PER_TASK)
-            .map(|p| target.weights[p] * (self.model(p, coefs) - target.values[p]).length_squared())
-            .sum()
+            .map(|range| {
+                range
+                    .map(|p| {
+                        target.weights[p]
+                            * (self.model(p, coefs) - target.values[p]).length_squared()
+                    })
+                    .sum()
+            })
+            .collect();
+        partial.iter().sum()
     }
 }
 
@@ -101,7 +108,8 @@ pub fn sum_squared_error(target: &Target, params: &Params) -> f64 {
     Basis::new(target, params).sse(target, &params.coefs)
 }
 
-/// The pixel ranges of the parallel tasks.
+/// The sample ranges of the parallel tasks: fixed, so that partial sums combine in the same
+/// order on any number of threads and a fit is reproducible to the last bit.
 pub fn task_ranges(len: usize) -> Vec<std::ops::Range<usize>> {
     let step = BATCH * BATCHES_PER_TASK;
     (0..len.div_ceil(step))

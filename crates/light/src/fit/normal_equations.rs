@@ -50,7 +50,9 @@ pub fn normal_equations(
     let acc = task_ranges(target.len())
         .into_par_iter()
         .map(|range| accumulate(target, basis, params, frames, range))
-        .reduce(|| vec![0.0; width * width + 6 * n], add_vectors);
+        .collect::<Vec<_>>()
+        .into_iter()
+        .fold(vec![0.0; width * width + 6 * n], add_vectors);
     let (m, gradient) = acc.split_at(width * width);
     let mut m = m.to_vec();
     mirror_upper(&mut m, width);
