@@ -48,7 +48,7 @@ pub fn read_exr(path: &Path) -> Result<LatLongImage> {
 
 /// The luminance below which 99.5 % of the image's non-zero pixels lie: the white point of
 /// [`png_bytes`], robust to a few Monte Carlo fireflies. 0 for a black image.
-fn white_point(img: &LatLongImage) -> f64 {
+pub fn white_point(img: &LatLongImage) -> f64 {
     let mut lum: Vec<f64> = img
         .pixels
         .iter()
@@ -76,8 +76,12 @@ fn srgb(v: f64) -> u8 {
 /// A PNG for people: each channel mapped by ln(1 + 16 S/w)/ln 17, with w the image's
 /// [`white_point`], so that a lobe's faint tails show beside its bright cone; then sRGB.
 pub fn png_bytes(img: &LatLongImage) -> Result<Vec<u8>> {
+    png_bytes_with_white(img, white_point(img))
+}
+
+/// As [`png_bytes`] with a given white point `w`, so several images share one scale.
+pub fn png_bytes_with_white(img: &LatLongImage, w: f64) -> Result<Vec<u8>> {
     let g = img.grid;
-    let w = white_point(img);
     let map = |s: f64| {
         if w > 0.0 {
             (1.0 + 16.0 * s.max(0.0) / w).ln() / 17f64.ln()

@@ -5,11 +5,16 @@ mod commands;
 mod latlong_io;
 mod output;
 mod progress;
+mod svg_plot;
 
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "cuticle", version, about = "Physically based hair: fiber models, ground truth, rendering")]
+#[command(
+    name = "cuticle",
+    version,
+    about = "Physically based hair: fiber models, ground truth, rendering"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -119,9 +119,17 @@ impl AzimuthalScattering {
         let rule = GaussLegendre::cached(PANEL_NODES);
         let panels = self.panel_count(p, eta_p);
         let width = PI / panels as f64;
+        let slope = deflection_slope_bound(p, eta_p);
+        let reach = 0.5 * width * slope + 8.0 * v.sqrt();
         let mut sum = DVec3::ZERO;
         for k in 0..panels {
             let mid = -0.5 * PI + (k as f64 + 0.5) * width;
+            // Φ moves at most `slope` per radian of γ: skip panels the lobe cannot reach.
+            if crate::frame::wrap_pi(phi - azimuthal_deflection(p as u32, mid.sin(), eta_p)).abs()
+                > reach
+            {
+                continue;
+            }
             for (x, w) in rule.nodes.iter().zip(&rule.weights) {
                 let gamma = mid + 0.5 * width * x;
                 let h = gamma.sin();
@@ -138,11 +146,17 @@ impl AzimuthalScattering {
 
     /// Panels such that Φ moves by at most a third of the lobe's standard deviation per node.
     fn panel_count(&self, p: usize, eta_p: f64) -> usize {
-        let slope = (2.0f64).max((2.0 * p as f64 / eta_p - 2.0).abs());
+        let slope = deflection_slope_bound(p, eta_p);
         let sigma = self.v_n[p].sqrt();
         let per_panel = PANEL_NODES as f64 * sigma / 3.0;
         ((slope * PI / per_panel).ceil() as usize).clamp(2, MAX_PANELS)
     }
+}
+
+/// A bound on |dΦ(p, sin γ)/dγ| = |2p cos γ / (η′ cos γ_t) − 2| over γ ∈ [−π/2, π/2]: the
+/// first term falls from 2p/η′ at γ = 0 to 0 at the edge.
+fn deflection_slope_bound(p: usize, eta_p: f64) -> f64 {
+    2.0f64.max(2.0 * p as f64 / eta_p - 2.0)
 }
 
 /// The selection probabilities of the five lobes from their attenuations.

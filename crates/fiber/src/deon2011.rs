@@ -23,8 +23,10 @@ use crate::longitudinal::LongitudinalLobe;
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::special::normal_quantile;
+use crate::table::AzimuthalTable;
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// The d'Eon et al. 2011 fiber model.
 #[derive(Clone, Debug)]
@@ -33,6 +35,7 @@ pub struct DEon2011 {
     azimuthal: AzimuthalScattering,
     /// Per lobe: longitudinal variance v_p and cone shift added to −θ_i.
     longitudinal: [(f64, f64); 5],
+    table: Option<Arc<AzimuthalTable>>,
 }
 
 impl DEon2011 {
@@ -53,6 +56,7 @@ impl DEon2011 {
             params,
             azimuthal,
             longitudinal,
+            table: None,
         })
     }
 
@@ -64,13 +68,20 @@ impl DEon2011 {
         &self.azimuthal
     }
 
-    /// The longitudinal lobe of mode p for light at θ_i.
-    pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
-        let (v, shift) = self.longitudinal[p];
-        LongitudinalLobe::new(v, -theta_i + shift)
+    /// The same model with N_p read from an [`AzimuthalTable`] built once for these parameters
+    /// (the fast path; see the table for its resolution and measured error).
+    pub fn tabulated(mut self) -> Self {
+        self.table = Some(Arc::new(AzimuthalTable::build(&self.azimuthal)));
+        self
     }
 
-    fn azimuthal(
+    /// The table, when the model has one.
+    pub fn table(&self) -> Option<&AzimuthalTable> {
+        self.table.as_deref()
+    }
+
+    /// N_p(φ), from the table when there is one, else by quadrature.
+    pub(crate) fn azimuthal(
         &self,
         p: usize,
         theta_i: f64,
@@ -78,7 +89,16 @@ impl DEon2011 {
         phi: f64,
         weighting: Weighting,
     ) -> DVec3 {
-        self.azimuthal.eval(p, theta_i, theta_d, phi, weighting)
+        match &self.table {
+            Some(t) => t.eval(p, theta_i, theta_d, phi, weighting),
+            None => self.azimuthal.eval(p, theta_i, theta_d, phi, weighting),
+        }
+    }
+
+    /// The longitudinal lobe of mode p for light at θ_i.
+    pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
+        let (v, shift) = self.longitudinal[p];
+        LongitudinalLobe::new(v, -theta_i + shift)
     }
 }
 

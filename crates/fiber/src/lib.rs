@@ -11,6 +11,7 @@ pub mod cubic;
 pub mod deon2011;
 pub mod frame;
 pub mod fresnel;
+pub mod furnace;
 pub mod latlong;
 pub mod lobe;
 pub mod longitudinal;
@@ -20,6 +21,7 @@ pub mod nonseparable;
 pub mod nusselt;
 pub mod params;
 pub mod special;
+pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
 

@@ -1,6 +1,7 @@
+pub mod env;
+pub mod fiber_args;
 pub mod furnace;
-pub mod lobes;
 pub mod groom;
+pub mod lobes;
 pub mod sim;
 pub mod sweep;
-pub mod env;

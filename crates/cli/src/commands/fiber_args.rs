@@ -1,0 +1,135 @@
+//! Flags shared by the commands that evaluate a fiber model (DESIGN.md §5), and building the
+//! model they name.
+
+use anyhow::{Context, Result, bail};
+use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::{DEon2011, FiberModel, FiberParams, Marschner2003, NonSeparable};
+use glam::DVec3;
+use serde_json::{Value, json};
+
+/// The models `--model` selects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ModelName {
+    Marschner,
+    Deon2011,
+    Nonseparable,
+}
+
+impl ModelName {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ModelName::Marschner => "marschner",
+            ModelName::Deon2011 => "deon2011",
+            ModelName::Nonseparable => "nonseparable",
+        }
+    }
+}
+
+#[derive(clap::Args, Clone, Debug)]
+pub struct FiberArgs {
+    /// Fiber model.
+    #[arg(long, value_enum, default_value_t = ModelName::Nonseparable)]
+    pub model: ModelName,
+    /// Longitudinal roughness β (Beckmann, as the simulator uses it), in (0, 1].
+    #[arg(long, default_value_t = 0.04)]
+    pub beta: f64,
+    /// Relative index of refraction η > 1.
+    #[arg(long, default_value_t = 1.55)]
+    pub eta: f64,
+    /// Scale tilt α, degrees (human hair: about −2 to −4).
+    #[arg(long, default_value_t = -2.0, allow_negative_numbers = true)]
+    pub alpha_deg: f64,
+    /// Interior absorption per unit radius: one value or r,g,b [default: 0.12,0.25,0.5].
+    #[arg(long, value_parser = crate::commands::sim::parse_mu_a, allow_negative_numbers = true, conflicts_with_all = ["eumelanin", "pheomelanin"])]
+    pub mu_a: Option<[f64; 3]>,
+    /// Eumelanin concentration, instead of --mu-a (d'Eon et al. 2011's coefficients).
+    #[arg(long)]
+    pub eumelanin: Option<f64>,
+    /// Pheomelanin concentration, instead of --mu-a.
+    #[arg(long)]
+    pub pheomelanin: Option<f64>,
+    /// Fixed-point iterations per sample of the non-separable model (seed 000 uses 6).
+    #[arg(long, default_value_t = cuticle_fiber::nonseparable::DEFAULT_ITERATIONS)]
+    pub iterations: u32,
+    /// Integrate N_p over h at every evaluation instead of reading the table built once per
+    /// parameter set (slower; the reference the table is measured against).
+    #[arg(long)]
+    pub direct: bool,
+}
+
+impl FiberArgs {
+    /// The physical parameters, validated: one sentence per fault.
+    pub fn params(&self) -> Result<FiberParams> {
+        let mu_a = match (self.mu_a, self.eumelanin, self.pheomelanin) {
+            (Some(m), _, _) => DVec3::from_array(m),
+            (None, None, None) => DVec3::new(0.12, 0.25, 0.5),
+            (None, eu, pheo) => {
+                let (eu, pheo) = (eu.unwrap_or(0.0), pheo.unwrap_or(0.0));
+                if !(eu.is_finite() && pheo.is_finite() && eu >= 0.0 && pheo >= 0.0) {
+                    bail!("melanin concentrations must be finite and non-negative");
+                }
+                mu_a_from_melanin(eu, pheo)
+            }
+        };
+        let params = FiberParams {
+            eta: self.eta,
+            beta: self.beta,
+            alpha: self.alpha_deg.to_radians(),
+            mu_a,
+        };
+        params.validate()?;
+        if self.iterations == 0 || self.iterations > 1000 {
+            bail!(
+                "--iterations must be between 1 and 1000, got {}",
+                self.iterations
+            );
+        }
+        Ok(params)
+    }
+
+    /// The model `--model` names, built from [`FiberArgs::params`].
+    pub fn model(&self) -> Result<Box<dyn FiberModel>> {
+        let params = self.params()?;
+        Ok(match self.model {
+            ModelName::Deon2011 => {
+                let model = DEon2011::new(params)?;
+                Box::new(if self.direct {
+                    model
+                } else {
+                    model.tabulated()
+                })
+            }
+            ModelName::Nonseparable => {
+                let model = NonSeparable::new(params)?.with_iterations(self.iterations);
+                Box::new(if self.direct {
+                    model
+                } else {
+                    model.tabulated()
+                })
+            }
+            ModelName::Marschner => {
+                Box::new(Marschner2003::from_fiber(&params).context("Marschner 2003 parameters")?)
+            }
+        })
+    }
+
+    /// The `"params"` object of the JSON records.
+    pub fn json(&self, theta_i: Option<f64>) -> Result<Value> {
+        let p = self.params()?;
+        let mut v = json!({
+            "model": self.model.as_str(),
+            "beta": p.beta,
+            "eta": p.eta,
+            "alpha_deg": self.alpha_deg,
+            "mu_a": p.mu_a.to_array(),
+            "eumelanin": self.eumelanin,
+            "pheomelanin": self.pheomelanin,
+            "iterations": self.iterations,
+            "direct": self.direct,
+        });
+        if let Some(t) = theta_i {
+            v["theta_i"] = json!(t);
+        }
+        Ok(v)
+    }
+}

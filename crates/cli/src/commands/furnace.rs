@@ -1,0 +1,105 @@
+//! `cuticle furnace`: the albedo ∫ S dω_o of a fiber model over a grid of θ_i (and of β when
+//! asked), by the deterministic quadrature of `cuticle_fiber::furnace`.
+
+use crate::commands::fiber_args::FiberArgs;
+use crate::output::OutDir;
+use anyhow::{Result, bail};
+use cuticle_fiber::furnace::{FurnaceRule, albedo};
+use cuticle_fiber::lobe::channel_mean;
+use rayon::prelude::*;
+use serde_json::json;
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    fiber: FiberArgs,
+    /// Incident inclinations θ_i, radians, comma-separated.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0,0.25,0.5,0.75,1,1.2,1.4",
+        allow_negative_numbers = true
+    )]
+    theta_i: Vec<f64>,
+    /// Roughnesses β to sweep, comma-separated (default: --beta alone).
+    #[arg(long, value_delimiter = ',')]
+    betas: Vec<f64>,
+    /// Output folder.
+    #[arg(long, default_value = "out/furnace")]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    if let Some(t) = args
+        .theta_i
+        .iter()
+        .find(|t| !(t.is_finite() && t.abs() < std::f64::consts::FRAC_PI_2))
+    {
+        bail!("every --theta-i must lie strictly between -pi/2 and pi/2, got {t}");
+    }
+    let betas = if args.betas.is_empty() {
+        vec![args.fiber.beta]
+    } else {
+        args.betas.clone()
+    };
+    let cases: Vec<(f64, f64)> = betas
+        .iter()
+        .flat_map(|&b| args.theta_i.iter().map(move |&t| (b, t)))
+        .collect();
+    let models = betas
+        .iter()
+        .map(|&beta| {
+            FiberArgs {
+                beta,
+                ..args.fiber.clone()
+            }
+            .model()
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let out = OutDir::create(&args.out)?;
+    let start = Instant::now();
+    let progress = crate::progress::bar(cases.len() as u64, "furnace");
+    let results: Vec<_> = cases
+        .par_iter()
+        .map(|&(beta, theta_i)| {
+            let model = &models[betas.iter().position(|&b| b == beta).unwrap_or(0)];
+            let rule = FurnaceRule {
+                beta,
+                max_shift: 6.0 * args.fiber.alpha_deg.abs().to_radians(),
+                resolution: 1,
+            };
+            let est = albedo(model.as_ref(), theta_i, rule);
+            progress.inc(1);
+            (beta, theta_i, est)
+        })
+        .collect();
+    progress.finish_and_clear();
+    println!(
+        "{:>8} {:>8} {:>10} {:>10}",
+        "beta", "theta_i", "albedo", "± rule"
+    );
+    for (beta, theta_i, est) in &results {
+        println!(
+            "{beta:>8.4} {theta_i:>8.3} {:>10.5} {:>10.1e}",
+            channel_mean(est.albedo),
+            channel_mean(est.error_estimate)
+        );
+    }
+    let record = json!({
+        "params": args.fiber.json(None)?,
+        "results": results.iter().map(|(beta, theta_i, est)| json!({
+            "theta_i": theta_i,
+            "beta": beta,
+            "albedo": channel_mean(est.albedo),
+            "albedo_rgb": est.albedo.to_array(),
+            "error_estimate": channel_mean(est.error_estimate),
+            "evaluations": est.evaluations,
+        })).collect::<Vec<_>>(),
+        "seconds": start.elapsed().as_secs_f64(),
+    });
+    out.write_json("furnace.json", &record)?;
+    println!("-> {}", args.out.join("furnace.json").display());
+    Ok(())
+}

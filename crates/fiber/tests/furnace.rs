@@ -1,0 +1,87 @@
+//! White furnace (issue 2): with σ_a = 0, α = 0 and η = 1.55, d'Eon 2011 integrates to 1 within
+//! 0.5 % over θ_i ∈ {0, 0.5, 1.0, 1.4} × β ∈ {0.01, 0.04, 0.15, 0.3}, and so does the
+//! non-separable model except at rough grazing settings.
+//!
+//! There the non-separable TT lobe is not exactly normalised: its M depends on φ (through the
+//! offset h that φ selects) while its N depends on θ_o (through η′(θ_d)), so ∫∫ M N is Ā only
+//! to second order. That coupling is what makes seed 000's fixed-point sampling necessary; it
+//! costs up to 1.04 % of the energy (β = 0.3, θ_i = 1.0; 0.6 % at β = 0.15, θ_i = 1.2, measured
+//! with `cuticle furnace --model nonseparable`), and the test holds it to that.
+//! The grid runs on the tabulated fast path (whose error against direct quadrature the table's
+//! own tests bound); one configuration also runs on direct quadrature.
+
+use cuticle_fiber::furnace::{FurnaceRule, albedo};
+use cuticle_fiber::{DEon2011, FiberModel, FiberParams, NonSeparable};
+use glam::DVec3;
+
+const THETAS: [f64; 4] = [0.0, 0.5, 1.0, 1.4];
+const BETAS: [f64; 4] = [0.01, 0.04, 0.15, 0.3];
+
+fn lossless(beta: f64) -> FiberParams {
+    FiberParams {
+        eta: 1.55,
+        beta,
+        alpha: 0.0,
+        mu_a: DVec3::ZERO,
+    }
+}
+
+fn check(model: &dyn FiberModel, beta: f64, thetas: &[f64]) {
+    check_within(model, beta, thetas, 0.005);
+}
+
+fn check_within(model: &dyn FiberModel, beta: f64, thetas: &[f64], tolerance: f64) {
+    for &theta_i in thetas {
+        let est = albedo(
+            model,
+            theta_i,
+            FurnaceRule {
+                beta,
+                max_shift: 0.0,
+                resolution: 1,
+            },
+        );
+        let a = est.albedo.x;
+        // The rule must be sharp enough to judge 0.5 %, and the albedo then within it.
+        assert!(
+            est.error_estimate.x < 0.001,
+            "{} β {beta} θ_i {theta_i}: {est:?}",
+            model.name()
+        );
+        assert!(
+            (a - 1.0).abs() < tolerance,
+            "{} β {beta} θ_i {theta_i}: albedo {a}",
+            model.name()
+        );
+    }
+}
+
+#[test]
+fn deon2011_conserves_energy() {
+    for beta in BETAS {
+        check(
+            &DEon2011::new(lossless(beta)).unwrap().tabulated(),
+            beta,
+            &THETAS,
+        );
+    }
+}
+
+#[test]
+fn nonseparable_conserves_energy() {
+    for beta in BETAS {
+        let model = NonSeparable::new(lossless(beta)).unwrap().tabulated();
+        if beta <= 0.04 {
+            check(&model, beta, &THETAS);
+        } else {
+            check(&model, beta, &THETAS[..2]);
+            check_within(&model, beta, &THETAS[2..], 0.0125);
+        }
+    }
+}
+
+#[test]
+fn direct_quadrature_conserves_energy_too() {
+    check(&DEon2011::new(lossless(0.15)).unwrap(), 0.15, &[0.5]);
+    check(&NonSeparable::new(lossless(0.15)).unwrap(), 0.15, &[1.0]);
+}
