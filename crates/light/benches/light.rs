@@ -1,14 +1,20 @@
-//! Benchmarks: loading a 1k Radiance map, and fitting 40 SRBF lights to it.
+//! Benchmarks: loading a 1k Radiance map and a 1k tiled OpenEXR map, and fitting 40 SRBF lights
+//! to the Radiance one.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use cuticle_light::{FitOptions, fit_srbf, load_env_map};
 use std::path::PathBuf;
 
 fn map_path() -> Option<PathBuf> {
+    shared("venice_sunset_1k.hdr")
+}
+
+fn shared(name: &str) -> Option<PathBuf> {
     let path = PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/envmaps/venice_sunset_1k.hdr"
-    ));
+        "/../../../shared/data/envmaps"
+    ))
+    .join(name);
     if path.exists() {
         Some(path)
     } else {
@@ -22,6 +28,13 @@ fn load(c: &mut Criterion) {
     c.bench_function("load venice_sunset_1k.hdr", |b| {
         b.iter(|| load_env_map(&path).expect("map loads"))
     });
+    let Some(exr) = shared("KernerEnvLatLong.exr") else {
+        return;
+    };
+    c.bench_function(
+        "load KernerEnvLatLong.exr (tiled, mip-mapped, ZIP, half)",
+        |b| b.iter(|| load_env_map(&exr).expect("map loads")),
+    );
 }
 
 fn fit(c: &mut Criterion) {

@@ -67,7 +67,7 @@ impl Default for FitOptions {
             fit_width: 128,
             refine_samples: 4096,
             kmeans_iterations: 20,
-            max_iterations: 150,
+            max_iterations: 100,
             revive_rounds: 3,
             tolerance: 1e-3,
             min_bandwidth: None,
