@@ -131,7 +131,8 @@ impl NonSeparable {
             let step = (next - theta_o).abs();
             theta_o = next;
             if step < CONVERGED {
-                return (theta_o, phi, iteration);
+                // This step only confirmed the previous one: that one was the last needed.
+                return (theta_o, phi, (iteration - 1).max(1));
             }
         }
         (theta_o, phi, self.iterations)
@@ -280,6 +281,7 @@ pub fn tt_offset(phi: f64, eta_prime: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     #[test]
     fn r_cone_from_rotations_matches_the_closed_form() {
@@ -350,5 +352,60 @@ mod tests {
         let grazing = cone_tt(-1.3, alpha, 1.55, 0.0);
         let cone = cone_tt(-1.3, -alpha, 1.55, 0.0);
         assert!(grazing == 0.5 * PI || cone == 0.5 * PI, "{grazing} {cone}");
+    }
+
+    /// Seed 000 §3: the fixed-point samples follow the model only up to Appendix A's residual.
+    /// Measured total-variation distances between 2¹⁹ samples and the reported density, over
+    /// θ_i × β × α: within 0.005 of the noise floor of the same number of exact draws (0.006 to
+    /// 0.012 here), asserted within 0.01; the mean iteration count stays at most 3 (the paper
+    /// reports about 2).
+    #[test]
+    fn fixed_point_sampling_gap_and_iterations() {
+        use crate::testing::sampling_gap;
+        let mut worst_iterations: f64 = 0.0;
+        for (theta_i, beta, alpha_deg) in [
+            (0.2, 0.04, -2.0),
+            (1.0, 0.08, 2.0),
+            (-0.7, 0.15, -4.0),
+            (1.3, 0.04, 0.0),
+        ] {
+            let params = FiberParams {
+                eta: 1.55,
+                beta,
+                alpha: f64::to_radians(alpha_deg),
+                mu_a: DVec3::new(0.1, 0.3, 0.6),
+            };
+            let model = NonSeparable::new(params).unwrap().tabulated();
+            let gap = sampling_gap(&model, FiberAngles::new(theta_i, 0.0), 1 << 19, 3, (32, 64));
+            println!(
+                "θ_i {theta_i} β {beta} α {alpha_deg}°: TV {:.4} (noise {:.4}), mean iterations {:.3}",
+                gap.total_variation, gap.noise_floor, gap.mean_iterations
+            );
+            assert!(
+                gap.total_variation < gap.noise_floor + 0.01,
+                "θ_i {theta_i} β {beta}: {:.4}",
+                gap.total_variation
+            );
+            worst_iterations = worst_iterations.max(gap.mean_iterations);
+        }
+        assert!(worst_iterations <= 3.0, "{worst_iterations}");
+    }
+
+    #[test]
+    fn one_iteration_is_measurably_worse_than_six() {
+        use crate::testing::sampling_gap;
+        let params = FiberParams {
+            eta: 1.55,
+            beta: 0.1,
+            alpha: f64::to_radians(-3.0),
+            mu_a: DVec3::ZERO,
+        };
+        let wi = FiberAngles::new(1.2, 0.0);
+        let six = NonSeparable::new(params).unwrap().tabulated();
+        let one = six.clone().with_iterations(1);
+        let g6 = sampling_gap(&six, wi, 1 << 18, 9, (32, 64)).total_variation;
+        let g1 = sampling_gap(&one, wi, 1 << 18, 9, (32, 64)).total_variation;
+        println!("TV with 1 iteration {g1:.4}, with 6 {g6:.4}");
+        assert!(g1 > g6 + 0.01, "{g1} vs {g6}");
     }
 }
