@@ -31,10 +31,10 @@ pub struct FiberArgs {
     #[arg(long, value_enum, default_value_t = ModelName::Nonseparable)]
     pub model: ModelName,
     /// Longitudinal roughness β (Beckmann, as the simulator uses it), in (0, 1].
-    #[arg(long, default_value_t = 0.04)]
+    #[arg(long, default_value_t = 0.04, allow_negative_numbers = true)]
     pub beta: f64,
     /// Relative index of refraction η > 1.
-    #[arg(long, default_value_t = 1.55)]
+    #[arg(long, default_value_t = 1.55, allow_negative_numbers = true)]
     pub eta: f64,
     /// Scale tilt α, degrees (human hair: about −2 to −4).
     #[arg(long, default_value_t = -2.0, allow_negative_numbers = true)]
@@ -43,10 +43,10 @@ pub struct FiberArgs {
     #[arg(long, value_parser = crate::commands::sim::parse_mu_a, allow_negative_numbers = true, conflicts_with_all = ["eumelanin", "pheomelanin"])]
     pub mu_a: Option<[f64; 3]>,
     /// Eumelanin concentration, instead of --mu-a (d'Eon et al. 2011's coefficients).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub eumelanin: Option<f64>,
     /// Pheomelanin concentration, instead of --mu-a.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub pheomelanin: Option<f64>,
     /// Fixed-point iterations per sample of the non-separable model (seed 000 uses 6).
     #[arg(long, default_value_t = cuticle_fiber::nonseparable::DEFAULT_ITERATIONS)]

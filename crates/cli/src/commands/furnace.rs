@@ -24,7 +24,7 @@ pub struct Args {
     )]
     theta_i: Vec<f64>,
     /// Roughnesses β to sweep, comma-separated (default: --beta alone).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     betas: Vec<f64>,
     /// Output folder.
     #[arg(long, default_value = "out/furnace")]
