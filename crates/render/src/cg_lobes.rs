@@ -1,0 +1,289 @@
+//! The azimuthal functions as circular Gaussians (seed 004 §4.2.1, §4.2.3, §4.2.4), for one
+//! absorption channel at one (η, θ_d):
+//! - N_R as the Schlick polynomial Σ_k C_k(θ_d, η) |cos^k(φ/2)| (eq. 13);
+//! - N_TT ≈ b_tt g^c(φ; π, λ_tt), b_tt = N_TT(π), λ_tt from the energy (eqs. 16–19);
+//! - N_TRT ≈ b₁(g^c(φ; φ*, λ₁) + g^c(φ; −φ*, λ₁)) + b₂ g^c(φ; 0, φ*) for η′ < 2 (eqs. 20–23),
+//!   b₃ g^c(φ; 0, λ′₃) beyond, with λ′₃ blended from λ₁ over Δη′ (§4.2.4).
+
+use crate::angles::{deflection, deflection_slope, eta_prime, sigma_prime, smoothstep, wrap_pi};
+use crate::circular_gaussian as cg;
+use crate::fresnel::{oblique, schlick_f0};
+use crate::tables::Tables;
+use crate::taylor;
+use std::f64::consts::PI;
+
+/// One weighted circular Gaussian b · g^c(φ; μ, λ).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lobe {
+    pub weight: f64,
+    pub centre: f64,
+    pub bandwidth: f64,
+}
+
+impl Lobe {
+    pub fn eval(&self, phi: f64) -> f64 {
+        self.weight * cg::eval(phi, self.centre, self.bandwidth)
+    }
+
+    /// ∫ g^c(φ′; 0, λ′) · (this lobe at δ − φ′) dφ′ (seed 004 eq. 12).
+    pub fn convolve(&self, lambda_light: f64, delta: f64) -> f64 {
+        if self.weight == 0.0 {
+            return 0.0;
+        }
+        self.weight * cg::convolve(lambda_light, delta, self.centre, self.bandwidth)
+    }
+
+    /// ∫ over the circle.
+    pub fn energy(&self) -> f64 {
+        self.weight * cg::integral(self.bandwidth)
+    }
+}
+
+/// Widest bandwidth a fitted lobe may take (a nearly uniform lobe).
+const MAX_BANDWIDTH: f64 = 20.0;
+/// Narrowest bandwidth a fitted lobe may take.
+const MIN_BANDWIDTH: f64 = 1e-3;
+
+/// C_0 … C_6 of N_R's Schlick polynomial in |cos(φ/2)| (eq. 13): with c = cos θ_d and
+/// (1 − c|cos(φ/2)|)⁵ expanded, C₁ = ¼ and C_{n+1} = ¼ (1 − F₀) (5 choose n) (−c)ⁿ, n = 1…5.
+pub fn r_coefficients(eta: f64, theta_d: f64) -> [f64; 7] {
+    const BINOMIAL: [f64; 6] = [1.0, 5.0, 10.0, 10.0, 5.0, 1.0];
+    let (f0, c) = (schlick_f0(eta), theta_d.cos());
+    let mut out = [0.0; 7];
+    out[1] = 0.25;
+    let mut power = 1.0;
+    for n in 1..6 {
+        power *= -c;
+        out[n + 1] = 0.25 * (1.0 - f0) * BINOMIAL[n] * power;
+    }
+    out
+}
+
+/// N_R(φ) from its polynomial (eq. 13).
+pub fn r_eval(eta: f64, theta_d: f64, phi: f64) -> f64 {
+    let c = r_coefficients(eta, theta_d);
+    let x = (0.5 * phi).cos().abs();
+    c.iter().rev().fold(0.0, |acc, &ck| acc * x + ck)
+}
+
+/// 𝒩_R = Σ_k C_k 𝒞_k(λ′, δ) (eq. 14).
+pub fn r_convolved(tables: &Tables, eta: f64, theta_d: f64, lambda_light: f64, delta: f64) -> f64 {
+    let c = r_coefficients(eta, theta_d);
+    let t = tables.cosine_normalised(lambda_light, delta);
+    let sum: f64 = (1..7).map(|k| c[k] * t[k]).sum();
+    sum * t[7].exp()
+}
+
+/// N_TT as one circular Gaussian at π (eqs. 15–19). `sigma_a` per unit radius.
+pub fn tt_lobe(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> Lobe {
+    let ep = eta_prime(eta, theta_d);
+    let sp = sigma_prime(sigma_a, eta, theta_d);
+    let f0 = oblique(eta, theta_d, 0.0);
+    let slope = deflection_slope(1, 0.0, ep).abs().max(1e-9);
+    let weight = 0.5 * (1.0 - f0).powi(2) * (-2.0 * sp).exp() / slope;
+    let h = tables.h_tt(eta, theta_d);
+    let a = taylor::relative(1, sp, ep);
+    // λ_tt = ∫N_TT / (√π b_tt) with the common e^{−2σ′} cancelled (eq. 17).
+    let relative_energy = 0.5 * (a[0] * h[0] + a[1] * h[1] + a[2] * h[2]);
+    let area = relative_energy * slope / (0.5 * (1.0 - f0).powi(2));
+    let lambda = cg::bandwidth_for_integral(area);
+    Lobe {
+        weight,
+        centre: PI,
+        bandwidth: lambda.clamp(MIN_BANDWIDTH, MAX_BANDWIDTH),
+    }
+}
+
+/// ∫ N_TT dφ by the Taylor expansion and ℋ^TT (eq. 19).
+pub fn tt_energy(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
+    let ep = eta_prime(eta, theta_d);
+    let a = taylor::coefficients(1, sigma_prime(sigma_a, eta, theta_d), ep);
+    let h = tables.h_tt(eta, theta_d);
+    0.5 * (a[0] * h[0] + a[1] * h[1] + a[2] * h[2])
+}
+
+/// ∫ N_TRT dφ by the Taylor expansion of T² and ℋ^TRT (eq. 23).
+pub fn trt_energy(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
+    let ep = eta_prime(eta, theta_d);
+    let c = taylor::coefficients(2, sigma_prime(sigma_a, eta, theta_d), ep);
+    let h = tables.h_trt(eta, theta_d);
+    0.5 * (c[0] * h[0] + c[1] * h[1] + c[2] * h[2])
+}
+
+/// Parameters of the TRT fit that do not depend on absorption.
+#[derive(Clone, Copy, Debug)]
+pub struct TrtShape {
+    /// λ₁: bandwidth of the two caustic Gaussians.
+    pub caustic_bandwidth: f64,
+    /// Δη′ of the blend across η′ = 2.
+    pub caustic_fade: f64,
+}
+
+/// N_TRT as three (η′ < 2) or one circular Gaussian (eqs. 20–23 and the blend of §4.2.4).
+pub fn trt_lobes(
+    tables: &Tables,
+    eta: f64,
+    theta_d: f64,
+    sigma_a: f64,
+    shape: TrtShape,
+) -> [Lobe; 3] {
+    let ep = eta_prime(eta, theta_d);
+    let energy = trt_energy(tables, eta, theta_d, sigma_a);
+    let at_zero = trt_at_zero(eta, theta_d, sigma_a, ep);
+    let l1 = shape.caustic_bandwidth;
+    let none = Lobe {
+        weight: 0.0,
+        centre: 0.0,
+        bandwidth: 1.0,
+    };
+    if ep < 2.0 {
+        let h_star = ((4.0 - ep * ep) / 3.0).sqrt();
+        let phi_star = wrap_pi(deflection(2, h_star, ep)).abs().max(MIN_BANDWIDTH);
+        let b2 = at_zero * (1.0 - cg::eval(0.0, phi_star, l1)).powi(2);
+        let centre = Lobe {
+            weight: b2,
+            centre: 0.0,
+            bandwidth: phi_star,
+        };
+        let b1 = ((energy - centre.energy()) / (2.0 * cg::integral(l1))).max(0.0);
+        let glint = |c| Lobe {
+            weight: b1,
+            centre: c,
+            bandwidth: l1,
+        };
+        return [glint(phi_star), glint(-phi_star), centre];
+    }
+    let b3 = at_zero.max(1e-300);
+    let l3 = cg::bandwidth_for_integral(energy / b3).clamp(MIN_BANDWIDTH, MAX_BANDWIDTH);
+    let s = smoothstep(2.0, 2.0 + shape.caustic_fade, ep);
+    let blended = l1 + s * (l3 - l1);
+    [
+        Lobe {
+            // b₃λ₃/λ′₃ of §4.2.4 with exact integrals: the lobe keeps the energy ∫N_TRT.
+            weight: energy / cg::integral(blended),
+            centre: 0.0,
+            bandwidth: blended,
+        },
+        none,
+        none,
+    ]
+}
+
+/// N_TRT(0) = ½ Σ A/|dΦ/dh| over its roots: h = 0 and, for η′ < 2, ±η′√(1 − η′²/4) (where
+/// 2 asin(h/η′) = asin h).
+fn trt_at_zero(eta: f64, theta_d: f64, sigma_a: f64, ep: f64) -> f64 {
+    let term = |h: f64| {
+        crate::exact_azimuthal::attenuation(2, eta, theta_d, sigma_a, h)
+            / (2.0 * deflection_slope(2, h, ep).abs().max(1e-9))
+    };
+    let mut sum = term(0.0);
+    if ep < 2.0 {
+        let h0 = ep * (1.0 - 0.25 * ep * ep).max(0.0).sqrt();
+        if h0 < 1.0 - 1e-9 {
+            sum += 2.0 * term(h0);
+        }
+    }
+    sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact_azimuthal;
+    use std::sync::OnceLock;
+
+    fn tables() -> &'static Tables {
+        static T: OnceLock<Tables> = OnceLock::new();
+        T.get_or_init(Tables::build)
+    }
+
+    fn integral(f: impl Fn(f64) -> f64) -> f64 {
+        let n = 3600;
+        (0..n)
+            .map(|i| f(-PI + (i as f64 + 0.5) * 2.0 * PI / n as f64) * 2.0 * PI / n as f64)
+            .sum()
+    }
+
+    /// Schlick's N_R polynomial against ¼|cos(φ/2)| F_Schlick evaluated directly: 1e-12.
+    #[test]
+    fn r_polynomial_is_the_schlick_expression() {
+        for &(eta, td) in &[(1.55f64, 0.0f64), (1.4, 0.7), (2.0, 1.2)] {
+            let f0 = schlick_f0(eta);
+            for i in 0..50 {
+                let phi = -PI + 0.1256 * i as f64;
+                let c = (0.5 * phi).cos().abs();
+                let direct = 0.25 * c * (f0 + (1.0 - f0) * (1.0 - td.cos() * c).powi(5));
+                assert!((r_eval(eta, td, phi) - direct).abs() < 1e-12);
+            }
+        }
+    }
+
+    /// The TT Gaussian against the exact N_TT at the paper's θ_d = 0, π/6, π/3 (Fig. 3a):
+    /// peak exact (1e-9), energy within 3 %, and an L1 shape error below 20 % of the energy.
+    #[test]
+    fn tt_gaussian_matches_exact_tt() {
+        for &td in &[0.0, PI / 6.0, PI / 3.0] {
+            for &sigma in &[0.2, 0.6] {
+                let lobe = tt_lobe(tables(), 1.55, td, sigma);
+                let exact = |phi| exact_azimuthal::azimuthal(1, 1.55, td, sigma, phi);
+                assert!((lobe.eval(PI) / exact(PI) - 1.0).abs() < 1e-9);
+                let e = exact_azimuthal::energy(1, 1.55, td, sigma);
+                assert!(
+                    (lobe.energy() / e - 1.0).abs() < 0.03,
+                    "θ_d {td}: {} vs {e}",
+                    lobe.energy()
+                );
+                let l1 = integral(|phi| (lobe.eval(phi) - exact(phi)).abs());
+                assert!(l1 < 0.2 * e, "θ_d {td} σ {sigma}: L1 {l1} of {e}");
+            }
+        }
+    }
+
+    /// The TRT Gaussians against the exact N_TRT: energy within 5 % (θ_d = 0, π/6, π/3 and η
+    /// with η′ on both sides of 2), and the blend continuous across η′ = 2 (1 %).
+    #[test]
+    fn trt_gaussians_preserve_energy_and_blend_continuously() {
+        let shape = TrtShape {
+            caustic_bandwidth: 0.3,
+            caustic_fade: 0.3,
+        };
+        for &(eta, td) in &[(1.55, 0.0), (1.55, PI / 6.0), (1.55, PI / 3.0), (2.3, 0.2)] {
+            let lobes = trt_lobes(tables(), eta, td, 0.3, shape);
+            let fit: f64 = lobes.iter().map(Lobe::energy).sum();
+            let e = exact_azimuthal::energy(2, eta, td, 0.3);
+            assert!(
+                (fit / e - 1.0).abs() < 0.05,
+                "η {eta} θ_d {td}: {fit} vs {e}"
+            );
+        }
+        let at = |eta: f64| -> f64 {
+            trt_lobes(tables(), eta, 0.0, 0.3, shape)
+                .iter()
+                .map(|l| l.eval(0.05))
+                .sum()
+        };
+        assert!((at(1.9999) / at(2.0001) - 1.0).abs() < 0.01);
+    }
+
+    /// The fitted TRT's shape: the glints sit at the exact N_TRT's caustics ±φ*, where the
+    /// exact function diverges, and away from them the fit stays within 35 % of its mean
+    /// (the exact function integrated over a window the width of the glint).
+    #[test]
+    fn trt_glints_sit_on_the_caustics() {
+        let shape = TrtShape {
+            caustic_bandwidth: 0.3,
+            caustic_fade: 0.3,
+        };
+        let lobes = trt_lobes(tables(), 1.55, 0.0, 0.2, shape);
+        let fit = |phi: f64| lobes.iter().map(|l| l.eval(phi)).sum::<f64>();
+        let exact = |phi| exact_azimuthal::azimuthal(2, 1.55, 0.0, 0.2, phi);
+        let window = |f: &dyn Fn(f64) -> f64, c: f64| {
+            (0..200)
+                .map(|i| f(c - 0.6 + 0.006 * i as f64) * 0.006)
+                .sum::<f64>()
+        };
+        let peak = lobes[0].centre;
+        let (wf, we) = (window(&fit, peak), window(&exact, peak));
+        assert!((wf / we - 1.0).abs() < 0.35, "{wf} vs {we} at φ* = {peak}");
+    }
+}
