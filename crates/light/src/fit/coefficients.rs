@@ -27,8 +27,8 @@ pub fn solve_coefficients_with(target: &Target, basis: &Basis, params: &mut Para
             nnls(&gram, &b, n)
         })
         .collect();
-    for j in 0..n {
-        params.coefs[j] = DVec3::new(channels[0][j], channels[1][j], channels[2][j]);
+    for (j, coef) in params.coefs.iter_mut().enumerate() {
+        *coef = DVec3::new(channels[0][j], channels[1][j], channels[2][j]);
     }
 }
 

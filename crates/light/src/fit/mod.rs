@@ -79,7 +79,8 @@ impl Default for FitOptions {
 /// What a fit made and measured.
 #[derive(Clone, Debug, Serialize)]
 pub struct FitReport {
-    /// The lights, most powerful first.
+    /// The lights, most powerful first; always `lights` of them, and any the fit found no use
+    /// for (a smooth map needs fewer) come last with a zero coefficient.
     pub lights: Vec<SrbfLight>,
     /// Relative L2 error on the full-resolution map (see [`relative_l2_error`]).
     pub relative_l2: f64,
@@ -268,7 +269,7 @@ fn validate(options: &FitOptions) -> Result<(), LightError> {
     if !min_ok || !max_ok || options.max_bandwidth <= 0.0 {
         return bad("bandwidths must be positive, finite, and min ≤ max");
     }
-    if !(options.tolerance >= 0.0) {
+    if options.tolerance.is_nan() || options.tolerance < 0.0 {
         return bad("the tolerance must be ≥ 0");
     }
     Ok(())

@@ -129,10 +129,7 @@ mod tests {
         let (a, b, n) = problem(&y);
         let x = nnls(&a, &b, n);
         let w = gradient(&a, &b, &x, n);
-        assert!(
-            x.iter().any(|&v| v == 0.0),
-            "the test wants an active bound"
-        );
+        assert!(x.contains(&0.0), "the test wants an active bound");
         for i in 0..n {
             assert!(x[i] >= 0.0);
             if x[i] > 0.0 {
