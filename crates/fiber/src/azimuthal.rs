@@ -90,8 +90,16 @@ impl AzimuthalScattering {
         let phi = crate::frame::wrap_pi(phi);
         let h = -(0.5 * phi).sin();
         let jac = 0.25 * (0.5 * phi).cos();
-        let a = self.attenuation(theta_i, h);
-        jac * weight(&a, 0, weighting)
+        match weighting {
+            // A(0, h) is the Fresnel factor alone: no need for the other lobes' absorption.
+            Weighting::Attenuation => {
+                let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
+                DVec3::splat(
+                    jac * crate::fresnel::fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta),
+                )
+            }
+            Weighting::Selection => jac * weight(&self.attenuation(theta_i, h), 0, weighting),
+        }
     }
 
     /// The p ≥ 4 remainder, spread uniformly in φ: (½ ∫ A_rest dh) / 2π.

@@ -80,19 +80,34 @@ impl DEon2011 {
         self.table.as_deref()
     }
 
-    /// N_p(φ), from the table when there is one, else by quadrature.
-    pub(crate) fn azimuthal(
+    /// N_p(φ) for every lobe, from the table when there is one, else by quadrature.
+    pub(crate) fn azimuthal_all(
         &self,
-        p: usize,
         theta_i: f64,
         theta_d: f64,
         phi: f64,
         weighting: Weighting,
-    ) -> DVec3 {
+    ) -> [DVec3; 5] {
         match &self.table {
-            Some(t) => t.eval(p, theta_i, theta_d, phi, weighting),
-            None => self.azimuthal.eval(p, theta_i, theta_d, phi, weighting),
+            Some(t) => t.eval_all(theta_i, theta_d, phi, weighting),
+            None => {
+                std::array::from_fn(|p| self.azimuthal.eval(p, theta_i, theta_d, phi, weighting))
+            }
         }
+    }
+
+    /// Σ_p M_p N_p per lobe; the p ≥ 4 remainder shares TRRT's longitudinal lobe.
+    fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
+        let theta_d = 0.5 * (wo.theta - wi.theta);
+        let n = self.azimuthal_all(wi.theta, theta_d, wrap_pi(wo.phi - wi.phi), weighting);
+        let m: [f64; 4] = std::array::from_fn(|p| self.longitudinal(p, wi.theta).eval(wo.theta));
+        LobeValues([
+            m[0] * n[0],
+            m[1] * n[1],
+            m[2] * n[2],
+            m[3] * n[3],
+            m[3] * n[4],
+        ])
     }
 
     /// The longitudinal lobe of mode p for light at θ_i.
@@ -108,15 +123,7 @@ impl FiberModel for DEon2011 {
     }
 
     fn eval(&self, wi: FiberAngles, wo: FiberAngles) -> LobeValues {
-        let theta_d = 0.5 * (wo.theta - wi.theta);
-        let phi = wrap_pi(wo.phi - wi.phi);
-        let mut out = LobeValues::default();
-        for lobe in Lobe::ALL {
-            let p = lobe.index();
-            let m = self.longitudinal(p, wi.theta).eval(wo.theta);
-            out[lobe] = m * self.azimuthal(p, wi.theta, theta_d, phi, Weighting::Attenuation);
-        }
-        out
+        self.density(wi, wo, Weighting::Attenuation)
     }
 
     fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
@@ -130,16 +137,7 @@ impl FiberModel for DEon2011 {
     }
 
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
-        let theta_d = 0.5 * (wo.theta - wi.theta);
-        let phi = wrap_pi(wo.phi - wi.phi);
-        (0..5)
-            .map(|p| {
-                self.longitudinal(p, wi.theta).eval(wo.theta)
-                    * self
-                        .azimuthal(p, wi.theta, theta_d, phi, Weighting::Selection)
-                        .x
-            })
-            .sum()
+        self.density(wi, wo, Weighting::Selection).total().x
     }
 }
 

@@ -99,15 +99,16 @@ impl NonSeparable {
     fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
-        let mut out = LobeValues::default();
-        for lobe in Lobe::ALL {
-            let p = lobe.index();
-            let m = self.longitudinal(p, wi.theta, phi).eval(wo.theta);
-            if m > 0.0 {
-                out[lobe] = m * self.deon.azimuthal(p, wi.theta, theta_d, phi, weighting);
-            }
-        }
-        out
+        let n = self.deon.azimuthal_all(wi.theta, theta_d, phi, weighting);
+        let m: [f64; 4] =
+            std::array::from_fn(|p| self.longitudinal(p, wi.theta, phi).eval(wo.theta));
+        LobeValues([
+            m[0] * n[0],
+            m[1] * n[1],
+            m[2] * n[2],
+            m[3] * n[3],
+            m[3] * n[4],
+        ])
     }
 
     /// θ_o and φ for TT or TRT by the fixed-point iteration of §3: guess θ_o = −θ_i, then

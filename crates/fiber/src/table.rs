@@ -86,18 +86,44 @@ impl AzimuthalTable {
         phi: f64,
         weighting: Weighting,
     ) -> DVec3 {
-        let v = match p {
-            0 => return self.az.eval(0, theta_i, theta_d, phi, weighting),
-            4 => {
-                let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
-                lerp4(self.rest[i0], self.rest[i0 + 1], fi)
-            }
-            _ => self.lookup(p, theta_i, theta_d, phi),
-        };
-        match weighting {
+        self.eval_all(theta_i, theta_d, phi, weighting)[p]
+    }
+
+    /// N_p(φ) for every lobe at once: the table coordinates are found once.
+    pub fn eval_all(
+        &self,
+        theta_i: f64,
+        theta_d: f64,
+        phi: f64,
+        weighting: Weighting,
+    ) -> [DVec3; 5] {
+        let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
+        let (d0, fd) = locate(self.az.eta / eta_perp(self.az.eta, theta_d), THETA_D_NODES);
+        let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
+        let pick = |v: [f32; 4]| match weighting {
             Weighting::Attenuation => DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64),
             Weighting::Selection => DVec3::splat(v[3] as f64),
-        }
+        };
+        let slab = THETA_D_NODES * self.phi_nodes;
+        let blurred = |p: usize| {
+            let base = (p - 1) * THETA_I_NODES * slab;
+            let at = |i: usize, d: usize, f: usize| {
+                self.blurred[base + i * slab + d * self.phi_nodes + f]
+            };
+            let plane = |i: usize| {
+                let lo = lerp4(at(i, d0, f0), at(i, d0, f0 + 1), ff);
+                let hi = lerp4(at(i, d0 + 1, f0), at(i, d0 + 1, f0 + 1), ff);
+                lerp4(lo, hi, fd)
+            };
+            pick(lerp4(plane(i0), plane(i0 + 1), fi))
+        };
+        [
+            self.az.eval(0, theta_i, theta_d, phi, weighting),
+            blurred(1),
+            blurred(2),
+            blurred(3),
+            pick(lerp4(self.rest[i0], self.rest[i0 + 1], fi)),
+        ]
     }
 
     /// Bytes the table occupies.
@@ -107,22 +133,6 @@ impl AzimuthalTable {
 
     pub fn phi_nodes(&self) -> usize {
         self.phi_nodes
-    }
-
-    fn lookup(&self, p: usize, theta_i: f64, theta_d: f64, phi: f64) -> [f32; 4] {
-        let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
-        let (d0, fd) = locate(self.az.eta / eta_perp(self.az.eta, theta_d), THETA_D_NODES);
-        let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
-        let slab = THETA_D_NODES * self.phi_nodes;
-        let base = (p - 1) * THETA_I_NODES * slab;
-        let at =
-            |i: usize, d: usize, f: usize| self.blurred[base + i * slab + d * self.phi_nodes + f];
-        let plane = |i: usize| {
-            let lo = lerp4(at(i, d0, f0), at(i, d0, f0 + 1), ff);
-            let hi = lerp4(at(i, d0 + 1, f0), at(i, d0 + 1, f0 + 1), ff);
-            lerp4(lo, hi, fd)
-        };
-        lerp4(plane(i0), plane(i0 + 1), fi)
     }
 }
 
