@@ -34,6 +34,8 @@ enum Command {
     Sweep(commands::sweep::Args),
     /// Environment light: fit an environment map with J SRBF lights (fit).
     Env(commands::env::Args),
+    /// Render a groom under environment light (seed 004's SRBF renderer, or --method brute).
+    Render(commands::render::Args),
 }
 
 fn main() {
@@ -45,6 +47,7 @@ fn main() {
         Command::Sim(args) => commands::sim::run(args),
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Env(args) => commands::env::run(args),
+        Command::Render(args) => commands::render::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

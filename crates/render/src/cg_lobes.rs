@@ -74,23 +74,80 @@ pub fn r_convolved(tables: &Tables, eta: f64, theta_d: f64, lambda_light: f64, d
     sum * t[7].exp()
 }
 
+/// What the TT and TRT fits need at one (η, θ_d) that does not depend on absorption: computed
+/// once per quadrature sample and shared by the three colour channels.
+#[derive(Clone, Copy, Debug)]
+pub struct Geometry {
+    pub eta: f64,
+    pub theta_d: f64,
+    eta_prime: f64,
+    /// cos θ_t, so that σ′_a = σ_a / cos θ_t.
+    cos_theta_t: f64,
+    /// ½ (1 − F(0))² / |dΦ/dh(1, 0)|: b_tt without T.
+    tt_peak: f64,
+    h_tt: [f64; 3],
+    h_trt: [f64; 3],
+    /// TRT roots of Φ ≡ 0: (½ (1 − F)² F / |dΦ/dh| · multiplicity, √(1 − h²/η′²)).
+    trt_roots: [(f64, f64); 2],
+    /// φ* of the caustics, for η′ < 2.
+    phi_star: Option<f64>,
+}
+
+impl Geometry {
+    pub fn new(tables: &Tables, eta: f64, theta_d: f64) -> Self {
+        let ep = eta_prime(eta, theta_d);
+        let f0 = oblique(eta, theta_d, 0.0);
+        let tt_slope = deflection_slope(1, 0.0, ep).abs().max(1e-9);
+        let root = |h: f64, mult: f64| {
+            let f = oblique(eta, theta_d, h);
+            let w = 0.5 * (1.0 - f).powi(2) * f / deflection_slope(2, h, ep).abs().max(1e-9);
+            (mult * w, (1.0 - (h / ep).powi(2)).max(0.0).sqrt())
+        };
+        let mut trt_roots = [root(0.0, 1.0), (0.0, 1.0)];
+        let mut phi_star = None;
+        if ep < 2.0 {
+            let h0 = ep * (1.0 - 0.25 * ep * ep).max(0.0).sqrt();
+            if h0 < 1.0 - 1e-9 {
+                trt_roots[1] = root(h0, 2.0);
+            }
+            let h_star = ((4.0 - ep * ep) / 3.0).sqrt();
+            phi_star = Some(wrap_pi(deflection(2, h_star, ep)).abs().max(MIN_BANDWIDTH));
+        }
+        Self {
+            eta,
+            theta_d,
+            eta_prime: ep,
+            cos_theta_t: cuticle_fiber::bravais::cos_theta_t(eta, theta_d).max(1e-6),
+            tt_peak: 0.5 * (1.0 - f0).powi(2) / tt_slope,
+            h_tt: tables.h_tt(eta, theta_d),
+            h_trt: tables.h_trt(eta, theta_d),
+            trt_roots,
+            phi_star,
+        }
+    }
+
+    fn sigma_prime(&self, sigma_a: f64) -> f64 {
+        sigma_a / self.cos_theta_t
+    }
+}
+
 /// N_TT as one circular Gaussian at π (eqs. 15–19). `sigma_a` per unit radius.
 pub fn tt_lobe(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> Lobe {
-    let ep = eta_prime(eta, theta_d);
-    let sp = sigma_prime(sigma_a, eta, theta_d);
-    let f0 = oblique(eta, theta_d, 0.0);
-    let slope = deflection_slope(1, 0.0, ep).abs().max(1e-9);
-    let weight = 0.5 * (1.0 - f0).powi(2) * (-2.0 * sp).exp() / slope;
-    let h = tables.h_tt(eta, theta_d);
-    let a = taylor::relative(1, sp, ep);
-    // λ_tt = ∫N_TT / (√π b_tt) with the common e^{−2σ′} cancelled (eq. 17).
-    let relative_energy = 0.5 * (a[0] * h[0] + a[1] * h[1] + a[2] * h[2]);
-    let area = relative_energy * slope / (0.5 * (1.0 - f0).powi(2));
-    let lambda = cg::bandwidth_for_integral(area);
+    tt_fit(&Geometry::new(tables, eta, theta_d), sigma_a)
+}
+
+/// [`tt_lobe`] from shared geometry: b_tt = N_TT(π) = ½ (1 − F(0))² T(0) / |dΦ/dh|, and λ_tt such
+/// that the Gaussian's integral is ∫N_TT = ½ Σ a_k ℋ_k^TT (eqs. 17–19; the common e^{−2σ′}
+/// cancels, and the width is the exact inverse of the circular integral).
+pub fn tt_fit(g: &Geometry, sigma_a: f64) -> Lobe {
+    let sp = g.sigma_prime(sigma_a);
+    let a = taylor::relative(1, sp, g.eta_prime);
+    let relative_energy = 0.5 * (a[0] * g.h_tt[0] + a[1] * g.h_tt[1] + a[2] * g.h_tt[2]);
+    let area = relative_energy / g.tt_peak.max(1e-300);
     Lobe {
-        weight,
+        weight: g.tt_peak * (-2.0 * sp).exp(),
         centre: PI,
-        bandwidth: lambda.clamp(MIN_BANDWIDTH, MAX_BANDWIDTH),
+        bandwidth: cg::bandwidth_for_integral(area).clamp(MIN_BANDWIDTH, MAX_BANDWIDTH),
     }
 }
 
@@ -104,10 +161,12 @@ pub fn tt_energy(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
 
 /// ∫ N_TRT dφ by the Taylor expansion of T² and ℋ^TRT (eq. 23).
 pub fn trt_energy(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
-    let ep = eta_prime(eta, theta_d);
-    let c = taylor::coefficients(2, sigma_prime(sigma_a, eta, theta_d), ep);
-    let h = tables.h_trt(eta, theta_d);
-    0.5 * (c[0] * h[0] + c[1] * h[1] + c[2] * h[2])
+    trt_energy_of(&Geometry::new(tables, eta, theta_d), sigma_a)
+}
+
+fn trt_energy_of(g: &Geometry, sigma_a: f64) -> f64 {
+    let c = taylor::coefficients(2, g.sigma_prime(sigma_a), g.eta_prime);
+    0.5 * (c[0] * g.h_trt[0] + c[1] * g.h_trt[1] + c[2] * g.h_trt[2])
 }
 
 /// Parameters of the TRT fit that do not depend on absorption.
@@ -127,18 +186,26 @@ pub fn trt_lobes(
     sigma_a: f64,
     shape: TrtShape,
 ) -> [Lobe; 3] {
-    let ep = eta_prime(eta, theta_d);
-    let energy = trt_energy(tables, eta, theta_d, sigma_a);
-    let at_zero = trt_at_zero(eta, theta_d, sigma_a, ep);
+    trt_fit(&Geometry::new(tables, eta, theta_d), sigma_a, shape)
+}
+
+/// [`trt_lobes`] from shared geometry.
+pub fn trt_fit(g: &Geometry, sigma_a: f64, shape: TrtShape) -> [Lobe; 3] {
+    let sp = g.sigma_prime(sigma_a);
+    let energy = trt_energy_of(g, sigma_a);
+    // N_TRT(0) = ½ Σ A/|dΦ/dh| over h = 0 and, for η′ < 2, ±η′√(1 − η′²/4).
+    let at_zero: f64 = g
+        .trt_roots
+        .iter()
+        .map(|&(w, path)| w * (-4.0 * sp * path).exp())
+        .sum();
     let l1 = shape.caustic_bandwidth;
     let none = Lobe {
         weight: 0.0,
         centre: 0.0,
         bandwidth: 1.0,
     };
-    if ep < 2.0 {
-        let h_star = ((4.0 - ep * ep) / 3.0).sqrt();
-        let phi_star = wrap_pi(deflection(2, h_star, ep)).abs().max(MIN_BANDWIDTH);
+    if let Some(phi_star) = g.phi_star {
         let b2 = at_zero * (1.0 - cg::eval(0.0, phi_star, l1)).powi(2);
         let centre = Lobe {
             weight: b2,
@@ -155,7 +222,7 @@ pub fn trt_lobes(
     }
     let b3 = at_zero.max(1e-300);
     let l3 = cg::bandwidth_for_integral(energy / b3).clamp(MIN_BANDWIDTH, MAX_BANDWIDTH);
-    let s = smoothstep(2.0, 2.0 + shape.caustic_fade, ep);
+    let s = smoothstep(2.0, 2.0 + shape.caustic_fade, g.eta_prime);
     let blended = l1 + s * (l3 - l1);
     [
         Lobe {
@@ -167,23 +234,6 @@ pub fn trt_lobes(
         none,
         none,
     ]
-}
-
-/// N_TRT(0) = ½ Σ A/|dΦ/dh| over its roots: h = 0 and, for η′ < 2, ±η′√(1 − η′²/4) (where
-/// 2 asin(h/η′) = asin h).
-fn trt_at_zero(eta: f64, theta_d: f64, sigma_a: f64, ep: f64) -> f64 {
-    let term = |h: f64| {
-        crate::exact_azimuthal::attenuation(2, eta, theta_d, sigma_a, h)
-            / (2.0 * deflection_slope(2, h, ep).abs().max(1e-9))
-    };
-    let mut sum = term(0.0);
-    if ep < 2.0 {
-        let h0 = ep * (1.0 - 0.25 * ep * ep).max(0.0).sqrt();
-        if h0 < 1.0 - 1e-9 {
-            sum += 2.0 * term(h0);
-        }
-    }
-    sum
 }
 
 #[cfg(test)]

@@ -12,11 +12,26 @@
 //! Pixels hold L_o times coverage plus the background for the rest.
 
 pub mod angles;
+pub mod brute;
+pub mod camera;
 pub mod cg_lobes;
 pub mod circular_gaussian;
 pub mod exact_azimuthal;
+pub mod fiber_frames;
 pub mod fresnel;
 pub mod grid;
+pub mod hair;
 pub mod quadrature;
+pub mod raster;
+pub mod renderer;
+pub mod scene;
+pub mod shadow;
+pub mod single_scattering;
 pub mod tables;
 pub mod taylor;
+
+pub use camera::Camera;
+pub use hair::{Fiber, HairParams};
+pub use renderer::{Image, Prepared, Renderer, Timings};
+pub use scene::{Method, Scene, SceneError, SceneSpec};
+pub use shadow::ShadowOptions;

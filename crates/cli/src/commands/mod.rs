@@ -3,5 +3,6 @@ pub mod fiber_args;
 pub mod furnace;
 pub mod groom;
 pub mod lobes;
+pub mod render;
 pub mod sim;
 pub mod sweep;

@@ -1,0 +1,240 @@
+//! `cuticle render`: the hair renderer of seed 004 (crate cuticle-render) on a scene from flags
+//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear) and `render.json` with
+//! every parameter and the seconds of each stage.
+
+use crate::output::OutDir;
+use anyhow::{Context, Result};
+use cuticle_light::{SrbfLight, ToneMap};
+use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
+use exr::prelude::*;
+use serde_json::{Value, json};
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args, Clone, Debug)]
+pub struct Args {
+    /// A TOML scene file (keys as in SceneSpec); flags override it.
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// A groom preset (straight, wavy, curly) or a .hair file.
+    #[arg(long)]
+    groom: Option<String>,
+    /// Strands of a preset groom.
+    #[arg(long)]
+    strands: Option<usize>,
+    /// `default` (procedural sky) or an .hdr/.exr lat-long map.
+    #[arg(long)]
+    env: Option<String>,
+    /// Number J of SRBF lights to fit, or a lights.json from `cuticle env fit`.
+    #[arg(long)]
+    lights: Option<String>,
+    /// srbf (seed 004) or brute (exact model, 6 n² directional lights).
+    #[arg(long, value_parser = ["srbf", "brute"])]
+    method: Option<String>,
+    /// Segments m of the linear quadrature.
+    #[arg(long)]
+    quadrature: Option<usize>,
+    /// Single scattering only.
+    #[arg(long)]
+    no_multiple: bool,
+    #[arg(long)]
+    width: Option<usize>,
+    #[arg(long)]
+    height: Option<usize>,
+    /// Subsamples per pixel along each axis.
+    #[arg(long)]
+    supersampling: Option<usize>,
+    /// n of the brute force's 6 n² lights.
+    #[arg(long)]
+    brute_grid: Option<usize>,
+    /// Index of refraction η.
+    #[arg(long, allow_negative_numbers = true)]
+    eta: Option<f64>,
+    /// Longitudinal shift α_R, degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    alpha_r_deg: Option<f64>,
+    /// Longitudinal width β_R, degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    beta_r_deg: Option<f64>,
+    /// Absorption σ_a per unit radius for every strand: one value or r,g,b.
+    #[arg(long, allow_negative_numbers = true)]
+    mu_a: Option<String>,
+    /// Eccentricity a.
+    #[arg(long, allow_negative_numbers = true)]
+    eccentricity: Option<f64>,
+    /// TRT caustic width w_c, degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    caustic_width_deg: Option<f64>,
+    /// Output folder.
+    #[arg(long, default_value = "out/render")]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let (spec, lights) = spec_from(&args)?;
+    let renderer = Renderer::new();
+    let scene = Scene::load(spec, lights)?;
+    eprintln!(
+        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}",
+        scene.groom.strand_count(),
+        scene.groom.point_count(),
+        scene.lights.len(),
+        scene.spec.width,
+        scene.spec.height,
+        scene.spec.method
+    );
+    let (image, prepared, timings) = renderer.render(&scene);
+    let out = OutDir::create(&args.out)?;
+    let tone = ToneMap::for_map(&scene.env);
+    out.write("image.png", &png_bytes(&image, tone)?)?;
+    out.write("image.exr", &exr_bytes(&image)?)?;
+    let record = json!({
+        "params": serde_json::to_value(&scene.spec)?,
+        "strands": scene.groom.strand_count(),
+        "points": scene.groom.point_count(),
+        "lights": scene.lights.len(),
+        "srbf_fit_relative_l2": scene.fit_error,
+        "visible_points": prepared.points.len(),
+        "coverage": prepared.coverage.covered_fraction(),
+        "multiple_scattering": "not implemented (dual scattering pending)",
+        "seconds": seconds_json(&timings),
+    });
+    out.write_json("render.json", &record)?;
+    println!(
+        "{}: {} visible points shaded in {:.2} s; frame {:.2} s (drawing {:.2}, shadows {:.2}, shading {:.2}, resolve {:.2}; tables {:.2}, fit {:.2})",
+        args.out.display(),
+        prepared.points.len(),
+        timings.shading,
+        timings.drawing + timings.shadows + timings.shading + timings.resolve,
+        timings.drawing,
+        timings.shadows,
+        timings.shading,
+        timings.resolve,
+        timings.tables,
+        timings.srbf_fit
+    );
+    Ok(())
+}
+
+/// The scene file (if any) with the flags laid over it, and lights read from a file.
+fn spec_from(args: &Args) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
+    let mut spec = match &args.scene {
+        Some(path) => SceneSpec::from_toml_file(path)?,
+        None => SceneSpec::default(),
+    };
+    let set = |field: &mut usize, v: Option<usize>| v.into_iter().for_each(|v| *field = v);
+    set(&mut spec.strands, args.strands);
+    set(&mut spec.width, args.width);
+    set(&mut spec.height, args.height);
+    set(&mut spec.quadrature, args.quadrature);
+    set(&mut spec.supersampling, args.supersampling);
+    set(&mut spec.brute_grid, args.brute_grid);
+    if let Some(g) = &args.groom {
+        spec.groom = g.clone();
+    }
+    if let Some(e) = &args.env {
+        spec.env = e.clone();
+    }
+    if let Some(m) = &args.method {
+        spec.method = if m == "brute" {
+            Method::Brute
+        } else {
+            Method::Srbf
+        };
+    }
+    spec.multiple = spec.multiple && !args.no_multiple;
+    let h = &mut spec.hair;
+    let setf = |field: &mut f64, v: Option<f64>| v.into_iter().for_each(|v| *field = v);
+    setf(&mut h.eta, args.eta);
+    setf(&mut h.alpha_r_deg, args.alpha_r_deg);
+    setf(&mut h.beta_r_deg, args.beta_r_deg);
+    setf(&mut h.eccentricity, args.eccentricity);
+    setf(&mut h.caustic_width_deg, args.caustic_width_deg);
+    if let Some(m) = &args.mu_a {
+        h.mu_a = Some(parse_rgb(m)?);
+    }
+    let lights = match &args.lights {
+        None => None,
+        Some(s) => match s.parse::<usize>() {
+            Ok(n) => {
+                spec.lights = n;
+                None
+            }
+            Err(_) => Some(read_lights(Path::new(s))?),
+        },
+    };
+    Ok((spec, lights))
+}
+
+fn parse_rgb(s: &str) -> Result<[f64; 3]> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .with_context(|| format!("--mu-a takes one number or r,g,b, got {s}"))?;
+    match v.as_slice() {
+        [x] => Ok([*x; 3]),
+        [r, g, b] => Ok([*r, *g, *b]),
+        _ => anyhow::bail!("--mu-a takes one number or r,g,b, got {s}"),
+    }
+}
+
+/// The `"lights"` array of a lights.json written by `cuticle env fit`.
+fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let value: Value =
+        serde_json::from_str(&text).with_context(|| format!("{} is not JSON", path.display()))?;
+    let lights = value
+        .get("lights")
+        .cloned()
+        .with_context(|| format!("{} has no \"lights\" array", path.display()))?;
+    Ok(serde_json::from_value(lights)?)
+}
+
+/// Seconds per stage as render.json records them.
+pub fn seconds_json(t: &Timings) -> Value {
+    json!({
+        "tables": t.tables,
+        "srbf_fit": t.srbf_fit,
+        "drawing": t.drawing,
+        "shadows": t.shadows,
+        "shading": t.shading,
+        "resolve": t.resolve,
+        "frame": t.drawing + t.shadows + t.shading + t.resolve,
+    })
+}
+
+/// Tone-mapped 8-bit sRGB PNG with the environment's exposure.
+pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
+    let mut img = image::RgbImage::new(image.width as u32, image.height as u32);
+    for (k, p) in image.pixels.iter().enumerate() {
+        let c = tone.apply(p.as_vec3());
+        img.put_pixel(
+            (k % image.width) as u32,
+            (k / image.width) as u32,
+            image::Rgb(c),
+        );
+    }
+    let mut bytes = Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png)?;
+    Ok(bytes.into_inner())
+}
+
+/// Linear 32-bit float RGB OpenEXR.
+fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
+    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+        let p = image.pixels[y * image.width + x];
+        (p.x as f32, p.y as f32, p.z as f32)
+    });
+    let exr = exr::prelude::Image::from_encoded_channels(
+        (image.width, image.height),
+        Encoding::SMALL_LOSSLESS,
+        channels,
+    );
+    let mut bytes = Cursor::new(Vec::new());
+    exr.write()
+        .to_buffered(&mut bytes)
+        .context("cannot encode EXR")?;
+    Ok(bytes.into_inner())
+}

@@ -1,0 +1,186 @@
+//! Hair scattering parameters: the global set a scene carries (Marschner 2003's Table 1, as
+//! seed 004 edits them), and the per-strand values shading reads, taking each strand's
+//! absorption from the groom's [`Appearance`] unless the scene overrides it.
+//!
+//! The groom's β and α (pbrt-style roughness and a tilt in degrees) are not Marschner's β_R and
+//! α_R; the renderer takes the longitudinal lobes from the global parameters and only the
+//! absorption (σ_a or melanin) per strand.
+
+use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_groom::{Absorption, Appearance};
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::SQRT_2;
+
+/// The editable parameters of the hair (angles in degrees, as a user types them).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HairParams {
+    /// Index of refraction η.
+    pub eta: f64,
+    /// Longitudinal shift α_R, degrees (α_TT = −α_R/2, α_TRT = −3α_R/2).
+    pub alpha_r_deg: f64,
+    /// Longitudinal width β_R, degrees (β_TT = β_R/2, β_TRT = 2β_R).
+    pub beta_r_deg: f64,
+    /// Absorption σ_a per unit radius for every strand; `None` takes each strand's own.
+    pub mu_a: Option<[f64; 3]>,
+    /// σ_a of strands whose appearance carries none.
+    pub default_mu_a: [f64; 3],
+    /// Eccentricity a (1 for a circular fiber; seed 004 eq. 24).
+    pub eccentricity: f64,
+    /// Azimutal width w_c of the TRT caustics, degrees (a standard deviation, as Marschner's).
+    pub caustic_width_deg: f64,
+    /// Δη′ over which the TRT caustics fade once they merge (seed 004 §4.2.4).
+    pub caustic_fade: f64,
+    /// d_b, the weight of local backward multiple scattering (seed 004 eq. 4; 0.6–0.8).
+    pub d_b: f64,
+}
+
+impl Default for HairParams {
+    fn default() -> Self {
+        let m = MarschnerParams::default();
+        Self {
+            eta: m.eta,
+            alpha_r_deg: m.alpha_r.to_degrees(),
+            beta_r_deg: m.beta_r.to_degrees(),
+            mu_a: None,
+            default_mu_a: [0.3, 0.5, 0.9],
+            eccentricity: 1.0,
+            caustic_width_deg: m.caustic_width.to_degrees(),
+            caustic_fade: m.caustic_fade,
+            d_b: 0.7,
+        }
+    }
+}
+
+/// Why a parameter set cannot be rendered.
+#[derive(Clone, Debug, thiserror::Error, PartialEq)]
+#[error("hair parameter {name} = {value} is outside {range}")]
+pub struct HairParamError {
+    pub name: &'static str,
+    pub value: f64,
+    pub range: &'static str,
+}
+
+impl HairParams {
+    /// Checks every field against the ranges the model and tables cover.
+    pub fn validate(&self) -> Result<(), HairParamError> {
+        let mu = self.mu_a.unwrap_or(self.default_mu_a);
+        let checks = [
+            (
+                "eta",
+                self.eta,
+                self.eta > 1.0 && self.eta <= 10.0,
+                "(1, 10]",
+            ),
+            (
+                "alpha_r_deg",
+                self.alpha_r_deg,
+                self.alpha_r_deg.abs() <= 20.0,
+                "[-20, 20]",
+            ),
+            (
+                "beta_r_deg",
+                self.beta_r_deg,
+                self.beta_r_deg > 0.0 && self.beta_r_deg <= 45.0,
+                "(0, 45]",
+            ),
+            (
+                "mu_a",
+                mu[0].min(mu[1]).min(mu[2]),
+                mu.iter().all(|c| (0.0..=1000.0).contains(c)),
+                "[0, 1000]",
+            ),
+            (
+                "eccentricity",
+                self.eccentricity,
+                (0.5..=2.0).contains(&self.eccentricity),
+                "[0.5, 2]",
+            ),
+            (
+                "caustic_width_deg",
+                self.caustic_width_deg,
+                self.caustic_width_deg > 0.0 && self.caustic_width_deg <= 90.0,
+                "(0, 90]",
+            ),
+            (
+                "caustic_fade",
+                self.caustic_fade,
+                self.caustic_fade > 0.0 && self.caustic_fade <= 2.0,
+                "(0, 2]",
+            ),
+            ("d_b", self.d_b, (0.0..=1.0).contains(&self.d_b), "[0, 1]"),
+        ];
+        match checks.into_iter().find(|c| !(c.1.is_finite() && c.2)) {
+            Some((name, value, _, range)) => Err(HairParamError { name, value, range }),
+            None => Ok(()),
+        }
+    }
+
+    /// The shading parameters of a strand with this appearance.
+    pub fn fiber(&self, appearance: Option<&Appearance>) -> Fiber {
+        let own = appearance.and_then(|a| a.absorption).map(|a| match a {
+            Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
+            Absorption::Melanin {
+                eumelanin,
+                pheomelanin,
+            } => mu_a_from_melanin(eumelanin as f64, pheomelanin as f64),
+        });
+        let mu_a = match self.mu_a {
+            Some(m) => DVec3::from_array(m),
+            None => own.unwrap_or(DVec3::from_array(self.default_mu_a)),
+        };
+        Fiber {
+            eta: self.eta,
+            alpha_r: self.alpha_r_deg.to_radians(),
+            beta_r: self.beta_r_deg.to_radians(),
+            mu_a,
+            eccentricity: self.eccentricity,
+            caustic_width: self.caustic_width_deg.to_radians(),
+            caustic_fade: self.caustic_fade,
+        }
+    }
+}
+
+/// What shading one strand needs (radians).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fiber {
+    pub eta: f64,
+    pub alpha_r: f64,
+    pub beta_r: f64,
+    pub mu_a: DVec3,
+    pub eccentricity: f64,
+    /// w_c as Marschner's standard deviation.
+    pub caustic_width: f64,
+    pub caustic_fade: f64,
+}
+
+impl Fiber {
+    /// (α_p, β_p) of R, TT, TRT (Marschner 2003 Table 1).
+    pub fn longitudinal(&self) -> [(f64, f64); 3] {
+        let (a, b) = (self.alpha_r, self.beta_r);
+        [(a, b), (-0.5 * a, 0.5 * b), (-1.5 * a, 2.0 * b)]
+    }
+
+    /// λ₁ of the TRT caustic Gaussians: a circular Gaussian exp(−x²/λ²) has deviation λ/√2,
+    /// so Marschner's glint of deviation w_c is λ₁ = √2 w_c (seed 004 sets λ₁ = w_c in its own
+    /// bandwidth convention).
+    pub fn caustic_bandwidth(&self) -> f64 {
+        SQRT_2 * self.caustic_width
+    }
+
+    /// The exact model's parameters for the brute-force reference.
+    pub fn marschner(&self) -> MarschnerParams {
+        MarschnerParams {
+            eta: self.eta,
+            alpha_r: self.alpha_r,
+            beta_r: self.beta_r,
+            mu_a: self.mu_a,
+            eccentricity: self.eccentricity,
+            caustic_width: self.caustic_width,
+            caustic_fade: self.caustic_fade,
+            ..MarschnerParams::default()
+        }
+    }
+}

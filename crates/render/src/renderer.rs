@@ -1,0 +1,251 @@
+//! The frame pipeline, in the stages `render.json` times:
+//! 1. tables (once per process, [`Renderer::new`]);
+//! 2. drawing: strands rasterised into the supersampled visibility buffer, and the background;
+//! 3. shadows: T̃ of every light at every visible point (depends on geometry and lights only);
+//! 4. shading: L_o at every visible point (the only stage a hair-parameter edit re-runs);
+//! 5. resolve: subsamples averaged into pixels.
+
+use crate::brute::{self, Directional};
+use crate::camera::View;
+use crate::fiber_frames::{frame_at, strand_of_points};
+use crate::hair::Fiber;
+use crate::raster::{Coverage, EMPTY, rasterize};
+use crate::scene::{Method, Scene, light_to_world};
+use crate::shadow::transmittance;
+use crate::single_scattering::{LocalLight, shade};
+use crate::tables::Tables;
+use cuticle_fiber::Marschner2003;
+use glam::DVec3;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// A linear RGB image, row-major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: usize,
+    pub height: usize,
+    pub pixels: Vec<DVec3>,
+}
+
+/// Wall seconds of each stage.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Timings {
+    pub tables: f64,
+    pub srbf_fit: f64,
+    pub drawing: f64,
+    pub shadows: f64,
+    pub shading: f64,
+    pub resolve: f64,
+}
+
+/// What stays valid while only hair parameters change: visibility, background, lights and
+/// their transmittance at the visible points.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    pub coverage: Coverage,
+    pub view: View,
+    pub background: Vec<DVec3>,
+    /// Visible points, ascending.
+    pub points: Vec<u32>,
+    /// Light directions (world, toward the light), bandwidths and coefficients.
+    pub lights: Vec<(DVec3, f64, DVec3)>,
+    /// T̃ of light j at visible point p: `shadow[p * lights + j]`.
+    pub shadow: Vec<f32>,
+    pub strand_of_point: Vec<u32>,
+}
+
+/// The renderer: its tables, built once.
+#[derive(Clone, Debug)]
+pub struct Renderer {
+    pub tables: Arc<Tables>,
+    pub table_seconds: f64,
+}
+
+impl Default for Renderer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Renderer {
+    pub fn new() -> Self {
+        let start = Instant::now();
+        let tables = Arc::new(Tables::build());
+        Self {
+            tables,
+            table_seconds: start.elapsed().as_secs_f64(),
+        }
+    }
+
+    /// Stages 2–3.
+    pub fn prepare(&self, scene: &Scene, timings: &mut Timings) -> Prepared {
+        let spec = &scene.spec;
+        let start = Instant::now();
+        let view = scene.camera.view(spec.width, spec.height);
+        let coverage = rasterize(
+            &scene.groom,
+            &view,
+            spec.width,
+            spec.height,
+            spec.supersampling,
+        );
+        let background = background(scene, &view);
+        let points = coverage.visible_points(scene.groom.point_count());
+        timings.drawing = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let lights = match spec.method {
+            Method::Srbf => srbf_lights(scene),
+            Method::Brute => brute::directional_lights(scene, spec.brute_grid)
+                .into_iter()
+                .map(|Directional { direction, power }| (direction, 0.0, power))
+                .collect(),
+        };
+        let dirs: Vec<DVec3> = lights.iter().map(|l| l.0).collect();
+        let widths: Vec<f64> = lights.iter().map(|l| l.1).collect();
+        let shadow = transmittance(&scene.groom, &points, &dirs, &widths, &spec.shadows);
+        timings.shadows = start.elapsed().as_secs_f64();
+        Prepared {
+            coverage,
+            view,
+            background,
+            points,
+            lights,
+            shadow,
+            strand_of_point: strand_of_points(&scene.groom),
+        }
+    }
+
+    /// Stage 4: L_o at each visible point (in `prepared.points` order), for the scene's
+    /// current hair parameters.
+    pub fn shade(&self, scene: &Scene, prepared: &Prepared) -> Vec<DVec3> {
+        let fibers: Vec<Fiber> = (0..scene.groom.strand_count())
+            .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
+            .collect();
+        let nl = prepared.lights.len();
+        let m = scene.spec.quadrature;
+        let method = scene.spec.method;
+        prepared
+            .points
+            .par_iter()
+            .enumerate()
+            .map_init(Vec::new, |local, (k, &p)| {
+                let p = p as usize;
+                let fiber = &fibers[prepared.strand_of_point[p] as usize];
+                let frame = frame_at(&scene.groom, p);
+                let wo = (prepared.view.eye - scene.groom.positions()[p].as_dvec3()).normalize();
+                let shadow = &prepared.shadow[k * nl..(k + 1) * nl];
+                match method {
+                    Method::Srbf => {
+                        let ao = frame.angles(wo);
+                        local.clear();
+                        local.extend(prepared.lights.iter().zip(shadow).map(|(l, &t)| {
+                            let a = frame.angles(l.0);
+                            LocalLight {
+                                theta: a.theta,
+                                phi: a.phi,
+                                bandwidth: l.1,
+                                radiance: l.2 * t as f64,
+                            }
+                        }));
+                        shade(&self.tables, fiber, ao.theta, ao.phi, local, m)
+                    }
+                    Method::Brute => {
+                        let model =
+                            Marschner2003::new(fiber.marschner()).expect("validated parameters");
+                        let dirs: Vec<Directional> = prepared
+                            .lights
+                            .iter()
+                            .map(|l| Directional {
+                                direction: l.0,
+                                power: l.2,
+                            })
+                            .collect();
+                        brute::shade(&model, &frame, wo, &dirs, shadow)
+                    }
+                }
+            })
+            .collect()
+    }
+
+    /// Stage 5: averages each pixel's subsamples, hair shaded by interpolating its segment's
+    /// two point colours, the rest showing the background.
+    pub fn resolve(&self, prepared: &Prepared, colours: &[DVec3], point_count: usize) -> Image {
+        let mut by_point = vec![DVec3::ZERO; point_count];
+        for (&p, &c) in prepared.points.iter().zip(colours) {
+            by_point[p as usize] = c;
+        }
+        let cov = &prepared.coverage;
+        let n = (cov.ss * cov.ss) as f64;
+        let pixels = (0..cov.width * cov.height)
+            .into_par_iter()
+            .map(|k| {
+                let (x, y) = (k % cov.width, k / cov.width);
+                let sum: DVec3 = cov
+                    .pixel_samples(x, y)
+                    .map(|s| match cov.segment[s] {
+                        EMPTY => prepared.background[k],
+                        seg => {
+                            let t = cov.t[s] as f64;
+                            by_point[seg as usize].lerp(by_point[seg as usize + 1], t)
+                        }
+                    })
+                    .sum();
+                sum / n
+            })
+            .collect();
+        Image {
+            width: cov.width,
+            height: cov.height,
+            pixels,
+        }
+    }
+
+    /// A whole frame: prepare, shade, resolve, with the time of each stage.
+    pub fn render(&self, scene: &Scene) -> (Image, Prepared, Timings) {
+        let mut timings = Timings {
+            tables: self.table_seconds,
+            srbf_fit: scene.fit_seconds,
+            ..Timings::default()
+        };
+        let prepared = self.prepare(scene, &mut timings);
+        let image = self.rerender(scene, &prepared, &mut timings);
+        (image, prepared, timings)
+    }
+
+    /// Shading and resolve only: what an edit of the hair parameters costs.
+    pub fn rerender(&self, scene: &Scene, prepared: &Prepared, timings: &mut Timings) -> Image {
+        let start = Instant::now();
+        let colours = self.shade(scene, prepared);
+        timings.shading = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let image = self.resolve(prepared, &colours, scene.groom.point_count());
+        timings.resolve = start.elapsed().as_secs_f64();
+        image
+    }
+}
+
+/// The SRBF lights in world space: (direction, λ_j, L_j).
+fn srbf_lights(scene: &Scene) -> Vec<(DVec3, f64, DVec3)> {
+    scene
+        .lights
+        .iter()
+        .map(|l| {
+            (
+                light_to_world(l.centre()),
+                l.bandwidth as f64,
+                l.coefficient.as_dvec3(),
+            )
+        })
+        .collect()
+}
+
+/// The environment seen through each pixel centre.
+fn background(scene: &Scene, view: &View) -> Vec<DVec3> {
+    let (w, h) = (scene.spec.width, scene.spec.height);
+    (0..w * h)
+        .into_par_iter()
+        .map(|k| scene.env_radiance(view.ray((k % w) as f64 + 0.5, (k / w) as f64 + 0.5)))
+        .collect()
+}
