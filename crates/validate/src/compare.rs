@@ -1,0 +1,50 @@
+//! One configuration against one model: the model's pixel-integrated lobe images and the
+//! figures of every lobe.
+
+use crate::error::ValidateError;
+use crate::metrics::{LobeFigures, lobe_figures};
+use crate::models::ModelKind;
+use crate::pixel_integral::{PixelRule, integrate_lobes};
+use crate::sweep_dir::SimConfig;
+use cuticle_fiber::LatLongImage;
+
+/// The figures of one (configuration, model) pair, lobes in the order R, TT, TRT, TRRT, rest.
+#[derive(Clone, Debug)]
+pub struct ConfigFigures {
+    pub model: ModelKind,
+    pub lobes: [LobeFigures; 5],
+}
+
+/// `kind`'s five lobe images for `config` on `grid`, by the default [`PixelRule`].
+pub fn model_images(
+    config: &SimConfig,
+    kind: ModelKind,
+    grid: cuticle_fiber::LatLongGrid,
+) -> Result<[LatLongImage; 5], ValidateError> {
+    let params = config.fiber_params();
+    let model = kind.build(&params)?;
+    let rule = PixelRule::for_fiber(params.eta, params.alpha, params.beta);
+    Ok(integrate_lobes(model.as_ref(), config.theta_i, grid, &rule))
+}
+
+/// The figures of `kind` against the simulated lobe images `sim` of `config`.
+pub fn compare_config(
+    config: &SimConfig,
+    kind: ModelKind,
+    sim: &[LatLongImage; 5],
+) -> Result<ConfigFigures, ValidateError> {
+    let images = model_images(config, kind, sim[0].grid)?;
+    Ok(figures_of(kind, &images, sim))
+}
+
+/// The figures of already rendered model images against `sim`.
+pub fn figures_of(
+    kind: ModelKind,
+    model: &[LatLongImage; 5],
+    sim: &[LatLongImage; 5],
+) -> ConfigFigures {
+    ConfigFigures {
+        model: kind,
+        lobes: std::array::from_fn(|p| lobe_figures(&model[p], &sim[p])),
+    }
+}

@@ -1,0 +1,54 @@
+//! The per-lobe figures of one model against one simulation (issue 3): relative L1 error
+//! Σ|model − sim| Ω / Σ|sim| Ω, the energy difference ∫ model − ∫ sim, and the error in θ of
+//! the lobe's peak ([`crate::peak`]). Channel means throughout (DESIGN.md §5).
+
+use crate::peak::peak_theta_error;
+use cuticle_fiber::LatLongImage;
+use cuticle_fiber::lobe::channel_mean;
+use serde::Serialize;
+
+/// The figures of one lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct LobeFigures {
+    /// Σ|model − sim| Ω / Σ|sim| Ω; `None` where the simulated lobe is black.
+    pub relative_l1: Option<f64>,
+    /// ∫ S dω of the model's image.
+    pub energy_model: f64,
+    /// ∫ S dω of the simulation's image.
+    pub energy_sim: f64,
+    /// Error in θ of the peak, radians; `None` where either lobe is black.
+    pub peak_theta_error: Option<f64>,
+}
+
+impl LobeFigures {
+    /// energy_model − energy_sim.
+    pub fn energy_difference(&self) -> f64 {
+        self.energy_model - self.energy_sim
+    }
+}
+
+/// Σ|a − b| Ω and Σ|b| Ω over the sphere (channel mean).
+pub fn l1_sums(a: &LatLongImage, b: &LatLongImage) -> (f64, f64) {
+    let g = b.grid;
+    let (mut diff, mut norm) = (0.0, 0.0);
+    for k in 0..g.height {
+        let omega = g.pixel_solid_angle(k);
+        for j in 0..g.width {
+            diff += omega * channel_mean((a.at(j, k) - b.at(j, k)).abs());
+            norm += omega * channel_mean(b.at(j, k).abs());
+        }
+    }
+    (diff, norm)
+}
+
+/// The figures of `model` against `sim` (same grid).
+pub fn lobe_figures(model: &LatLongImage, sim: &LatLongImage) -> LobeFigures {
+    assert_eq!(model.grid, sim.grid, "images on different grids");
+    let (diff, norm) = l1_sums(model, sim);
+    LobeFigures {
+        relative_l1: (norm > 0.0).then(|| diff / norm),
+        energy_model: channel_mean(model.energy()),
+        energy_sim: channel_mean(sim.energy()),
+        peak_theta_error: peak_theta_error(model, sim),
+    }
+}
