@@ -1,7 +1,18 @@
 //! Hair fiber scattering: the shared fiber frame and lat-long grid, the special functions and
-//! Fresnel factors the models share, and the models themselves — [`DEon2011`] (and, as they
-//! land, Marschner 2003 and the non-separable model) — each able to evaluate S (DESIGN.md §3),
-//! importance-sample it and report the sampling pdf through [`FiberModel`].
+//! Fresnel factors the models share, and the models themselves — [`Marschner2003`],
+//! [`DEon2011`] and [`NonSeparable`] — each able to evaluate S (DESIGN.md §3), importance-sample
+//! it and report the sampling pdf through [`FiberModel`]. [`table::AzimuthalTable`] is the fast
+//! path for the azimuthal terms of the last two, [`furnace`] the white-furnace integrator.
+//!
+//! ```
+//! use cuticle_fiber::{DEon2011, FiberAngles, FiberModel, FiberParams};
+//! let model = DEon2011::new(FiberParams::default()).unwrap();
+//! let wi = FiberAngles::new(0.5, 0.0);
+//! let s = model.eval(wi, FiberAngles::new(-0.5, 0.3));
+//! assert!(s.total().min_element() > 0.0);
+//! let sample = model.sample(wi, [0.3, 0.6, 0.2, 0.9]).unwrap();
+//! assert!(sample.pdf > 0.0);
+//! ```
 
 pub mod absorption;
 pub mod attenuation;
