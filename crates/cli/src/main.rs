@@ -36,6 +36,8 @@ enum Command {
     Env(commands::env::Args),
     /// Render a groom under environment light (seed 004's SRBF renderer, or --method brute).
     Render(commands::render::Args),
+    /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
+    Validate(commands::validate::Args),
 }
 
 fn main() {
@@ -48,6 +50,7 @@ fn main() {
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Env(args) => commands::env::run(args),
         Command::Render(args) => commands::render::run(args),
+        Command::Validate(args) => commands::validate::run(args),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

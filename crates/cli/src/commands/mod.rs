@@ -6,3 +6,4 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod validate;
