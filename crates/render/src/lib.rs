@@ -12,15 +12,19 @@
 //! Pixels hold L_o times coverage plus the background for the rest.
 
 pub mod angles;
+pub mod back_scattering_tables;
 pub mod brute;
 pub mod camera;
 pub mod cg_lobes;
 pub mod circular_gaussian;
+pub mod dual_scattering;
 pub mod exact_azimuthal;
 pub mod fiber_frames;
+pub mod forward_scattering;
 pub mod fresnel;
 pub mod grid;
 pub mod hair;
+pub mod half_circle;
 pub mod quadrature;
 pub mod raster;
 pub mod renderer;

@@ -5,10 +5,13 @@
 //! 4. shading: L_o at every visible point (the only stage a hair-parameter edit re-runs);
 //! 5. resolve: subsamples averaged into pixels.
 
+use crate::back_scattering_tables::BackScatteringTables;
 use crate::brute::{self, Directional};
 use crate::camera::View;
+use crate::dual_scattering::Dual;
 use crate::fiber_frames::{frame_at, strand_of_points};
 use crate::hair::Fiber;
+use crate::half_circle::HalfCircle;
 use crate::raster::{Coverage, EMPTY, rasterize};
 use crate::scene::{Method, Scene, light_to_world};
 use crate::shadow::transmittance;
@@ -60,6 +63,7 @@ pub struct Prepared {
 #[derive(Clone, Debug)]
 pub struct Renderer {
     pub tables: Arc<Tables>,
+    pub half: Arc<HalfCircle>,
     pub table_seconds: f64,
 }
 
@@ -73,8 +77,10 @@ impl Renderer {
     pub fn new() -> Self {
         let start = Instant::now();
         let tables = Arc::new(Tables::build());
+        let half = Arc::new(HalfCircle::build());
         Self {
             tables,
+            half,
             table_seconds: start.elapsed().as_secs_f64(),
         }
     }
@@ -126,46 +132,71 @@ impl Renderer {
         let nl = prepared.lights.len();
         let m = scene.spec.quadrature;
         let method = scene.spec.method;
+        let hair = &scene.spec.hair;
+        let back = scene
+            .spec
+            .multiple
+            .then(|| BackScatteringTables::build(&hair.fiber(None), hair.d_b));
+        let dual = back.as_ref().map(|back| Dual {
+            tables: &self.tables,
+            half: &self.half,
+            back,
+            d_b: hair.d_b,
+            m,
+        });
         prepared
             .points
             .par_iter()
             .enumerate()
-            .map_init(Vec::new, |local, (k, &p)| {
-                let p = p as usize;
-                let fiber = &fibers[prepared.strand_of_point[p] as usize];
-                let frame = frame_at(&scene.groom, p);
-                let wo = (prepared.view.eye - scene.groom.positions()[p].as_dvec3()).normalize();
-                let shadow = &prepared.shadow[k * nl..(k + 1) * nl];
-                match method {
-                    Method::Srbf => {
-                        let ao = frame.angles(wo);
-                        local.clear();
-                        local.extend(prepared.lights.iter().zip(shadow).map(|(l, &t)| {
-                            let a = frame.angles(l.0);
-                            LocalLight {
-                                theta: a.theta,
-                                phi: a.phi,
-                                bandwidth: l.1,
-                                radiance: l.2 * t as f64,
-                            }
-                        }));
-                        shade(&self.tables, fiber, ao.theta, ao.phi, local, m)
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(local, lit), (k, &p)| {
+                    let p = p as usize;
+                    let fiber = &fibers[prepared.strand_of_point[p] as usize];
+                    let frame = frame_at(&scene.groom, p);
+                    let wo =
+                        (prepared.view.eye - scene.groom.positions()[p].as_dvec3()).normalize();
+                    let shadow = &prepared.shadow[k * nl..(k + 1) * nl];
+                    match method {
+                        Method::Srbf => {
+                            let ao = frame.angles(wo);
+                            local.clear();
+                            local.extend(prepared.lights.iter().map(|l| {
+                                let a = frame.angles(l.0);
+                                LocalLight {
+                                    theta: a.theta,
+                                    phi: a.phi,
+                                    bandwidth: l.1,
+                                    radiance: l.2,
+                                }
+                            }));
+                            lit.clear();
+                            lit.extend(local.iter().zip(shadow).map(|(l, &t)| LocalLight {
+                                radiance: l.radiance * t as f64,
+                                ..*l
+                            }));
+                            let single = shade(&self.tables, fiber, ao.theta, ao.phi, lit, m);
+                            let multiple = dual.as_ref().map_or(DVec3::ZERO, |d| {
+                                d.shade(fiber, ao.theta, ao.phi, local, shadow)
+                            });
+                            single + multiple
+                        }
+                        Method::Brute => {
+                            let model = Marschner2003::new(fiber.marschner())
+                                .expect("validated parameters");
+                            let dirs: Vec<Directional> = prepared
+                                .lights
+                                .iter()
+                                .map(|l| Directional {
+                                    direction: l.0,
+                                    power: l.2,
+                                })
+                                .collect();
+                            brute::shade(&model, &frame, wo, &dirs, shadow)
+                        }
                     }
-                    Method::Brute => {
-                        let model =
-                            Marschner2003::new(fiber.marschner()).expect("validated parameters");
-                        let dirs: Vec<Directional> = prepared
-                            .lights
-                            .iter()
-                            .map(|l| Directional {
-                                direction: l.0,
-                                power: l.2,
-                            })
-                            .collect();
-                        brute::shade(&model, &frame, wo, &dirs, shadow)
-                    }
-                }
-            })
+                },
+            )
             .collect()
     }
 

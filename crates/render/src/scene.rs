@@ -70,7 +70,7 @@ impl Default for SceneSpec {
             hair: HairParams::default(),
             method: Method::Srbf,
             quadrature: 4,
-            multiple: false,
+            multiple: true,
             supersampling: 3,
             shadows: ShadowOptions::default(),
             brute_grid: 16,

@@ -44,6 +44,7 @@ fn spec(method: Method, m: usize) -> SceneSpec {
         method,
         quadrature: m,
         brute_grid: 16,
+        multiple: false,
         shadows: ShadowOptions {
             resolution: 64,
             density: 0.0,

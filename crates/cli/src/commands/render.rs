@@ -96,7 +96,7 @@ pub fn run(args: Args) -> Result<()> {
         "srbf_fit_relative_l2": scene.fit_error,
         "visible_points": prepared.points.len(),
         "coverage": prepared.coverage.covered_fraction(),
-        "multiple_scattering": "not implemented (dual scattering pending)",
+        "multiple_scattering": multiple_json(&scene),
         "seconds": seconds_json(&timings),
     });
     out.write_json("render.json", &record)?;
@@ -190,6 +190,18 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
         .cloned()
         .with_context(|| format!("{} has no \"lights\" array", path.display()))?;
     Ok(serde_json::from_value(lights)?)
+}
+
+/// Whether and how multiple scattering was rendered.
+fn multiple_json(scene: &Scene) -> Value {
+    let srbf = scene.spec.method == Method::Srbf;
+    json!({
+        "enabled": scene.spec.multiple && srbf,
+        "model": "dual scattering (Zinke et al. 2008; seed 004 section 4.3)",
+        "d_b": scene.spec.hair.d_b,
+        "d_f": cuticle_render::forward_scattering::DENSITY_FACTOR,
+        "note": if srbf { "" } else { "brute-force dual scattering not implemented yet" },
+    })
 }
 
 /// Seconds per stage as render.json records them.
