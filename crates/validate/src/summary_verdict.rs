@@ -3,7 +3,7 @@
 //! scales are tilted, except at extreme roughness and grazing θ_i. "Beats" here: a smaller
 //! relative L1 error on the same configuration.
 
-use crate::summary::Row;
+use crate::summary::{Row, counted_l1};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
@@ -19,14 +19,14 @@ pub fn pairs<'a>(rows: &'a [Row], lobe: &str) -> Vec<Pair<'a>> {
     let deon: BTreeMap<&str, f64> = rows
         .iter()
         .filter(|r| r.model == "deon2011" && r.lobe == lobe)
-        .filter_map(|r| Some((r.config.as_str(), r.figures.relative_l1?)))
+        .filter_map(|r| Some((r.config.as_str(), counted_l1(r)?)))
         .collect();
     rows.iter()
         .filter(|r| r.model == "nonseparable" && r.lobe == lobe)
         .filter_map(|r| {
             Some(Pair {
                 row: r,
-                nonseparable: r.figures.relative_l1?,
+                nonseparable: counted_l1(r)?,
                 deon: *deon.get(r.config.as_str())?,
             })
         })

@@ -172,7 +172,7 @@ fn error_plot(rows: &[Row]) -> String {
                         rows.iter()
                             .filter(|r| r.model == *name && r.theta_i == *t)
                             .filter(|r| ["R", "TT", "TRT"].contains(&r.lobe))
-                            .map(|r| r.figures.relative_l1),
+                            .map(cuticle_validate::summary::counted_l1),
                     )
                     .map_or(f64::NAN, |v| v.0)
                 })
@@ -209,7 +209,7 @@ fn summary_json(rows: &[Row]) -> serde_json::Value {
             let v = mean_median(
                 rows.iter()
                     .filter(|r| r.model == kind.name() && r.lobe == lobe.name())
-                    .map(|r| r.figures.relative_l1),
+                    .map(cuticle_validate::summary::counted_l1),
             );
             if let Some((mean, median)) = v {
                 lobes.insert(
@@ -237,7 +237,7 @@ fn print_summary(rows: &[Row], n: usize, seconds: f64, args: &Args) {
                 let v = mean_median(
                     rows.iter()
                         .filter(|r| r.model == kind.name() && r.lobe == *l)
-                        .map(|r| r.figures.relative_l1),
+                        .map(cuticle_validate::summary::counted_l1),
                 )?;
                 Some(format!("{l} {:.3}", v.0))
             })
