@@ -38,6 +38,9 @@ enum Command {
     Render(commands::render::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),
+    /// Benchmarks: the renderer on the paper's workload (render).
+    #[command(subcommand)]
+    Bench(commands::render::Bench),
 }
 
 fn main() {
@@ -51,6 +54,7 @@ fn main() {
         Command::Env(args) => commands::env::run(args),
         Command::Render(args) => commands::render::run(args),
         Command::Validate(args) => commands::validate::run(args),
+        Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {
         eprintln!("error: {err:#}");

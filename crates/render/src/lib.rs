@@ -13,6 +13,7 @@
 
 pub mod angles;
 pub mod back_scattering_tables;
+pub mod bench;
 pub mod brute;
 pub mod camera;
 pub mod cg_lobes;

@@ -1,10 +1,12 @@
 //! `cuticle render`: the hair renderer of seed 004 (crate cuticle-render) on a scene from flags
 //! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear) and `render.json` with
-//! every parameter and the seconds of each stage.
+//! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
+//! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
 
 use crate::output::OutDir;
 use anyhow::{Context, Result};
 use cuticle_light::{SrbfLight, ToneMap};
+use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use exr::prelude::*;
 use serde_json::{Value, json};
@@ -114,6 +116,94 @@ pub fn run(args: Args) -> Result<()> {
         timings.srbf_fit
     );
     Ok(())
+}
+
+/// `cuticle bench`: what to benchmark.
+#[derive(clap::Subcommand, Clone, Debug)]
+pub enum Bench {
+    /// The renderer on the paper's workload (default groom, 40 SRBF lights, 720x480, single and
+    /// multiple scattering): medians of full frames and of re-renders after an absorption edit.
+    Render(BenchArgs),
+}
+
+#[derive(clap::Args, Clone, Debug)]
+pub struct BenchArgs {
+    /// Strands of the default groom.
+    #[arg(long)]
+    strands: Option<usize>,
+    #[arg(long)]
+    width: Option<usize>,
+    #[arg(long)]
+    height: Option<usize>,
+    /// Frames timed for each median.
+    #[arg(long, default_value_t = 3)]
+    frames: usize,
+    /// Output folder.
+    #[arg(long, default_value = "out/bench-render")]
+    out: PathBuf,
+}
+
+pub fn bench(command: Bench) -> Result<()> {
+    let Bench::Render(args) = command;
+    let mut spec = SceneSpec::default();
+    args.strands.into_iter().for_each(|v| spec.strands = v);
+    args.width.into_iter().for_each(|v| spec.width = v);
+    args.height.into_iter().for_each(|v| spec.height = v);
+    let renderer = Renderer::new();
+    let scene = Scene::load(spec, None)?;
+    eprintln!(
+        "bench: {} strands, {} SRBF lights, {}x{}, {} frames",
+        scene.groom.strand_count(),
+        scene.lights.len(),
+        scene.spec.width,
+        scene.spec.height,
+        args.frames
+    );
+    let report = cuticle_render::bench::run(&renderer, &scene, args.frames);
+    let out = OutDir::create(&args.out)?;
+    out.write_json("bench.json", &bench_json(&scene, &renderer, &report)?)?;
+    print_bench(&report);
+    Ok(())
+}
+
+/// bench.json: the scene's parameters and the median seconds.
+fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Result<Value> {
+    Ok(json!({
+        "params": serde_json::to_value(&scene.spec)?,
+        "strands": scene.groom.strand_count(),
+        "points": scene.groom.point_count(),
+        "lights": scene.lights.len(),
+        "frames": report.frames,
+        "visible_points": report.visible_points,
+        "seconds": {
+            "tables": renderer.table_seconds,
+            "srbf_fit": scene.fit_seconds,
+            "full_frame": seconds_json(&report.full),
+            "rerender": {
+                "shading": report.rerender.shading,
+                "resolve": report.rerender.resolve,
+                "frame": report.rerender_frame,
+            },
+        },
+    }))
+}
+
+fn print_bench(r: &BenchReport) {
+    let f = &r.full;
+    println!(
+        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.3} s (shading {:.3}, resolve {:.3}); tables {:.2} s once",
+        r.frames,
+        r.visible_points,
+        r.full_frame,
+        f.drawing,
+        f.shadows,
+        f.shading,
+        f.resolve,
+        r.rerender_frame,
+        r.rerender.shading,
+        r.rerender.resolve,
+        f.tables
+    );
 }
 
 /// The scene file (if any) with the flags laid over it, and lights read from a file.
