@@ -19,7 +19,7 @@ use crate::azimuthal::{AzimuthalScattering, Weighting};
 use crate::bravais::{azimuthal_deflection, eta_perp};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues};
-use crate::longitudinal::LongitudinalLobe;
+use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::special::normal_quantile;
@@ -35,6 +35,8 @@ pub struct DEon2011 {
     azimuthal: AzimuthalScattering,
     /// Per lobe: longitudinal variance v_p and cone shift added to −θ_i.
     longitudinal: [(f64, f64); 5],
+    /// The same lobes prepared for evaluation: width, and sine and cosine of the shift.
+    prepared: [(LongitudinalWidth, f64, f64); 4],
     table: Option<Arc<AzimuthalTable>>,
 }
 
@@ -52,10 +54,16 @@ impl DEon2011 {
             trrt,
         ];
         let azimuthal = AzimuthalScattering::new(params.eta, params.beta, params.mu_a);
+        let prepared = std::array::from_fn(|p| {
+            let (v, shift) = longitudinal[p];
+            let (sin_shift, cos_shift) = shift.sin_cos();
+            (LongitudinalWidth::new(v), sin_shift, cos_shift)
+        });
         Ok(Self {
             params,
             azimuthal,
             longitudinal,
+            prepared,
             table: None,
         })
     }
@@ -100,7 +108,13 @@ impl DEon2011 {
     fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let n = self.azimuthal_all(wi.theta, theta_d, wrap_pi(wo.phi - wi.phi), weighting);
-        let m: [f64; 4] = std::array::from_fn(|p| self.longitudinal(p, wi.theta).eval(wo.theta));
+        let (si, ci) = wi.theta.sin_cos();
+        let (so, co) = wo.theta.sin_cos();
+        // The cone −θ_i + shift, by the angle-sum identities.
+        let m: [f64; 4] = std::array::from_fn(|p| {
+            let (width, ss, cs) = self.prepared[p];
+            width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
+        });
         LobeValues([
             m[0] * n[0],
             m[1] * n[1],

@@ -30,11 +30,9 @@ impl LongitudinalLobe {
 
     /// M(θ_o), per unit cos θ_o dθ_o; evaluated in log space so any v is stable.
     pub fn eval(&self, theta_o: f64) -> f64 {
-        let v = self.v;
         let (sc, cc) = self.theta_cone.sin_cos();
         let (so, co) = theta_o.sin_cos();
-        let log_norm = -v.ln() - 1.0 / v - log1m_exp_neg(2.0 / v);
-        (log_norm + sc * so / v + log_i0(cc.abs() * co.abs() / v)).exp()
+        LongitudinalWidth::new(self.v).eval(sc, cc, so, co)
     }
 
     /// θ_o distributed with density M(θ_o) cos θ_o, from two uniform numbers (d'Eon 2013): the
@@ -47,6 +45,33 @@ impl LongitudinalLobe {
         let (sc, cc) = self.theta_cone.sin_cos();
         let sin_o = w * sc + s * (2.0 * PI * u2).cos() * cc;
         sin_o.clamp(-1.0, 1.0).asin()
+    }
+}
+
+/// The part of M that depends on the variance alone, computed once per lobe width: models
+/// whose widths are fixed keep one and evaluate M from sines and cosines they already have.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LongitudinalWidth {
+    pub v: f64,
+    inv_v: f64,
+    /// ln(csch(1/v) / 2v), without overflow for small v.
+    log_norm: f64,
+}
+
+impl LongitudinalWidth {
+    pub fn new(v: f64) -> Self {
+        let v = v.max(MIN_VARIANCE);
+        Self {
+            v,
+            inv_v: 1.0 / v,
+            log_norm: -v.ln() - 1.0 / v - log1m_exp_neg(2.0 / v),
+        }
+    }
+
+    /// M for a cone and an outgoing inclination given by their sines and cosines (seed 000 eq. 5).
+    pub fn eval(&self, sin_cone: f64, cos_cone: f64, sin_o: f64, cos_o: f64) -> f64 {
+        let x = (cos_cone * cos_o).abs() * self.inv_v;
+        (self.log_norm + sin_cone * sin_o * self.inv_v + log_i0(x)).exp()
     }
 }
 

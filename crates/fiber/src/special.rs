@@ -12,7 +12,7 @@ pub fn log_i0(x: f64) -> f64 {
     if x < 20.0 {
         i0_series(x).ln()
     } else {
-        x - 0.5 * (2.0 * PI * x).ln() + asymptotic_sum(x).ln()
+        x + (asymptotic_sum(x) / (2.0 * PI * x).sqrt()).ln()
     }
 }
 
