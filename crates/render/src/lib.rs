@@ -26,6 +26,7 @@ pub mod fresnel;
 pub mod grid;
 pub mod hair;
 pub mod half_circle;
+pub mod progress;
 pub mod quadrature;
 pub mod raster;
 pub mod renderer;
@@ -37,6 +38,7 @@ pub mod taylor;
 
 pub use camera::Camera;
 pub use hair::{Fiber, HairParams};
+pub use progress::Progress;
 pub use renderer::{Image, Prepared, Renderer, Timings};
 pub use scene::{Method, Scene, SceneError, SceneSpec};
 pub use shadow::ShadowOptions;

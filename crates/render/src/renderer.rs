@@ -12,6 +12,7 @@ use crate::dual_scattering::Dual;
 use crate::fiber_frames::{frame_at, strand_of_points};
 use crate::hair::Fiber;
 use crate::half_circle::HalfCircle;
+use crate::progress::{Counter, Progress};
 use crate::raster::{Coverage, EMPTY, rasterize};
 use crate::scene::{Method, Scene, light_to_world};
 use crate::shadow::transmittance;
@@ -126,6 +127,17 @@ impl Renderer {
     /// Stage 4: L_o at each visible point (in `prepared.points` order), for the scene's
     /// current hair parameters.
     pub fn shade(&self, scene: &Scene, prepared: &Prepared) -> Vec<DVec3> {
+        self.shade_with_progress(scene, prepared, &|_, _| {})
+    }
+
+    /// [`Self::shade`], reporting the points shaded so far to `progress`.
+    pub fn shade_with_progress(
+        &self,
+        scene: &Scene,
+        prepared: &Prepared,
+        progress: Progress,
+    ) -> Vec<DVec3> {
+        let counter = Counter::new(prepared.points.len(), progress);
         let fibers: Vec<Fiber> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
             .collect();
@@ -157,6 +169,7 @@ impl Renderer {
                     let wo =
                         (prepared.view.eye - scene.groom.positions()[p].as_dvec3()).normalize();
                     let shadow = &prepared.shadow[k * nl..(k + 1) * nl];
+                    counter.tick();
                     match method {
                         Method::Srbf => {
                             let ao = frame.angles(wo);
@@ -235,20 +248,40 @@ impl Renderer {
 
     /// A whole frame: prepare, shade, resolve, with the time of each stage.
     pub fn render(&self, scene: &Scene) -> (Image, Prepared, Timings) {
+        self.render_with_progress(scene, &|_, _| {})
+    }
+
+    /// [`Self::render`], reporting the shading stage's progress to `progress`.
+    pub fn render_with_progress(
+        &self,
+        scene: &Scene,
+        progress: Progress,
+    ) -> (Image, Prepared, Timings) {
         let mut timings = Timings {
             tables: self.table_seconds,
             srbf_fit: scene.fit_seconds,
             ..Timings::default()
         };
         let prepared = self.prepare(scene, &mut timings);
-        let image = self.rerender(scene, &prepared, &mut timings);
+        let image = self.rerender_with_progress(scene, &prepared, &mut timings, progress);
         (image, prepared, timings)
     }
 
     /// Shading and resolve only: what an edit of the hair parameters costs.
     pub fn rerender(&self, scene: &Scene, prepared: &Prepared, timings: &mut Timings) -> Image {
+        self.rerender_with_progress(scene, prepared, timings, &|_, _| {})
+    }
+
+    /// [`Self::rerender`], reporting the shading stage's progress to `progress`.
+    pub fn rerender_with_progress(
+        &self,
+        scene: &Scene,
+        prepared: &Prepared,
+        timings: &mut Timings,
+        progress: Progress,
+    ) -> Image {
         let start = Instant::now();
-        let colours = self.shade(scene, prepared);
+        let colours = self.shade_with_progress(scene, prepared, progress);
         timings.shading = start.elapsed().as_secs_f64();
         let start = Instant::now();
         let image = self.resolve(prepared, &colours, scene.groom.point_count());

@@ -4,6 +4,7 @@
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
 
 use crate::output::OutDir;
+use crate::progress::bar;
 use anyhow::{Context, Result};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
@@ -85,7 +86,13 @@ pub fn run(args: Args) -> Result<()> {
         scene.spec.height,
         scene.spec.method
     );
-    let (image, prepared, timings) = renderer.render(&scene);
+    let progress = bar(0, "shade");
+    let report = |done: usize, total: usize| {
+        progress.set_length(total as u64);
+        progress.set_position(done as u64);
+    };
+    let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
+    progress.finish_and_clear();
     let out = OutDir::create(&args.out)?;
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
