@@ -29,6 +29,8 @@ struct Sample {
 }
 
 /// Radiance L_o toward ω_o = (θ_o, φ_o) from every light (seed 004 eq. 2), with m segments.
+/// Lights of zero L_j T̃_j (a fitted map leaves unused lights with zero coefficient) add
+/// exactly nothing and are skipped.
 pub fn shade(
     tables: &Tables,
     fiber: &Fiber,
@@ -39,6 +41,7 @@ pub fn shade(
 ) -> DVec3 {
     lights
         .iter()
+        .filter(|light| light.radiance != DVec3::ZERO)
         .map(|light| {
             light.radiance
                 * modes(tables, fiber, theta_o, phi_o, light, m)
@@ -125,4 +128,43 @@ pub fn mean_eta_star(tables: &Tables, fiber: &Fiber, lambda: f64, phi_sum: f64) 
     let eta2 = 2.0 * (eta - 1.0) / a2 - eta + 2.0;
     let cos2 = 2.0 * tables.cosine_normalised(lambda, phi_sum)[2] - 1.0;
     (0.5 * ((eta1 + eta2) + cos2 * (eta1 - eta2))).max(1.0 + 1e-6)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{LocalLight, modes, shade};
+    use crate::hair::HairParams;
+    use crate::tables::Tables;
+    use glam::DVec3;
+
+    /// Skipping zero lights gives bit for bit the sum over every light, negative channels kept.
+    #[test]
+    fn skipping_zero_lights_changes_nothing() {
+        let tables = Tables::build();
+        let fiber = HairParams::default().fiber(None);
+        let light = |theta: f64, phi: f64, radiance: DVec3| LocalLight {
+            theta,
+            phi,
+            bandwidth: 0.4,
+            radiance,
+        };
+        let lights = [
+            light(0.3, 2.5, DVec3::new(2.0, 1.5, 1.0)),
+            light(-0.2, 1.0, DVec3::ZERO),
+            light(0.1, -2.8, DVec3::new(-0.5, 0.0, 0.7)),
+            light(0.6, 0.4, DVec3::ZERO),
+        ];
+        let (theta_o, phi_o) = (0.2, 0.1);
+        let every: DVec3 = lights
+            .iter()
+            .map(|l| {
+                l.radiance
+                    * modes(&tables, &fiber, theta_o, phi_o, l, 4)
+                        .iter()
+                        .sum::<DVec3>()
+            })
+            .sum();
+        assert_ne!(every, DVec3::ZERO);
+        assert_eq!(shade(&tables, &fiber, theta_o, phi_o, &lights, 4), every);
+    }
 }
