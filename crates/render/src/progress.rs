@@ -28,7 +28,7 @@ impl<'a> Counter<'a> {
     /// One more point shaded.
     pub fn tick(&self) {
         let done = self.done.fetch_add(1, Ordering::Relaxed) + 1;
-        if done % STEP == 0 || done == self.total {
+        if done.is_multiple_of(STEP) || done == self.total {
             (self.report)(done, self.total);
         }
     }
