@@ -127,6 +127,18 @@ impl LatLongImage {
     }
 }
 
+/// The five lobe images (R, TT, TRT, TRRT, rest) from rows of per-pixel lobe values, row 0
+/// (θ near +π/2) first, as a parallel evaluation over rows produces them.
+pub fn lobe_images(grid: LatLongGrid, rows: &[Vec<[DVec3; 5]>]) -> [LatLongImage; 5] {
+    std::array::from_fn(|p| LatLongImage {
+        grid,
+        pixels: rows
+            .iter()
+            .flat_map(|row| row.iter().map(move |v| v[p]))
+            .collect(),
+    })
+}
+
 /// A direction's pixel index: convenience for accumulating in the canonical frame.
 pub fn index_of_dir(grid: &LatLongGrid, d: DVec3) -> usize {
     let a = crate::frame::FiberAngles::from_dir(d);

@@ -114,11 +114,5 @@ pub fn integrate_lobes(
                 .collect()
         })
         .collect();
-    std::array::from_fn(|p| LatLongImage {
-        grid,
-        pixels: rows
-            .iter()
-            .flat_map(|row| row.iter().map(move |v| v[p]))
-            .collect(),
-    })
+    cuticle_fiber::latlong::lobe_images(grid, &rows)
 }

@@ -138,13 +138,7 @@ pub fn evaluate(model: &dyn FiberModel, wi: FiberAngles, grid: LatLongGrid) -> [
         })
         .collect();
     progress.finish_and_clear();
-    std::array::from_fn(|p| LatLongImage {
-        grid,
-        pixels: rows
-            .iter()
-            .flat_map(|row| row.iter().map(move |v| v[p]))
-            .collect(),
-    })
+    cuticle_fiber::latlong::lobe_images(grid, &rows)
 }
 
 fn sum(images: &[LatLongImage; 5]) -> LatLongImage {
