@@ -1,18 +1,27 @@
 //! The complementary error function, for the Smith shadowing term of the Beckmann distribution.
 
+use crate::poly::horner;
+
+/// The coefficients of the fit below, lowest degree first.
+const ERFCC: [f64; 10] = [
+    -1.265_512_23,
+    1.000_023_68,
+    0.374_091_96,
+    0.096_784_18,
+    -0.186_288_06,
+    0.278_868_07,
+    -1.135_203_98,
+    1.488_515_87,
+    -0.822_152_23,
+    0.170_872_77,
+];
+
 /// erfc(x) by the Chebyshev fit of Press et al., *Numerical Recipes* (2nd ed., §6.2, `erfcc`):
 /// fractional error below 1.2·10⁻⁷ for every real x.
 pub fn erfc(x: f64) -> f64 {
     let z = x.abs();
     let t = 1.0 / (1.0 + 0.5 * z);
-    let poly = -1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98
-                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+    let poly = horner(t, &ERFCC);
     let r = t * (-z * z + poly).exp();
     if x >= 0.0 { r } else { 2.0 - r }
 }

@@ -37,6 +37,7 @@ mod interface;
 mod ln;
 pub mod params;
 pub mod path;
+mod poly;
 pub mod record;
 mod rng;
 pub mod scale;

@@ -2,7 +2,23 @@
 //! m ∈ (√½, √2], ln m = 2 atanh(s) = 2s Σ s^(2k)/(2k+1) with s = (m − 1)/(m + 1), |s| ≤ 0.172
 //! (Abramowitz & Stegun 4.1.27), summed to s²¹ (truncation below 10⁻¹⁸).
 
+use crate::poly::horner;
 use std::f64::consts::{LN_2, SQRT_2};
+
+/// 1/(2k + 1) for k = 0…10: the series of atanh(s)/s in s².
+const ATANH_SERIES: [f64; 11] = [
+    1.0,
+    1.0 / 3.0,
+    1.0 / 5.0,
+    1.0 / 7.0,
+    1.0 / 9.0,
+    1.0 / 11.0,
+    1.0 / 13.0,
+    1.0 / 15.0,
+    1.0 / 17.0,
+    1.0 / 19.0,
+    1.0 / 21.0,
+];
 
 /// ln x for normal x > 0.
 #[inline]
@@ -16,15 +32,7 @@ pub fn ln(x: f64) -> f64 {
     }
     let s = (m - 1.0) / (m + 1.0);
     let z = s * s;
-    let series = 1.0
-        + z * (1.0 / 3.0
-            + z * (1.0 / 5.0
-                + z * (1.0 / 7.0
-                    + z * (1.0 / 9.0
-                        + z * (1.0 / 11.0
-                            + z * (1.0 / 13.0
-                                + z * (1.0 / 15.0
-                                    + z * (1.0 / 17.0 + z * (1.0 / 19.0 + z * (1.0 / 21.0))))))))));
+    let series = horner(z, &ATANH_SERIES);
     e as f64 * LN_2 + 2.0 * s * series
 }
 
