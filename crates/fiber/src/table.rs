@@ -125,15 +125,6 @@ impl AzimuthalTable {
             pick(lerp4(self.rest[i0], self.rest[i0 + 1], fi)),
         ]
     }
-
-    /// Bytes the table occupies.
-    pub fn size_bytes(&self) -> usize {
-        (self.blurred.len() + self.rest.len()) * std::mem::size_of::<[f32; 4]>()
-    }
-
-    pub fn phi_nodes(&self) -> usize {
-        self.phi_nodes
-    }
 }
 
 /// One θ_i row of one lobe: A and the selection probability at every quadrature node once, then

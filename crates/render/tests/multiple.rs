@@ -2,17 +2,14 @@
 //! release): it adds energy, more for lighter hair; it is off when `multiple` is; an isolated
 //! strand gets no global term.
 
+mod common;
+
+use common::renderer;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::{Groom, GroomParts};
 use cuticle_light::{EnvMap, SrbfLight};
-use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, ShadowOptions};
+use cuticle_render::{Image, Method, Scene, SceneSpec, ShadowOptions};
 use glam::Vec3;
-use std::sync::OnceLock;
-
-fn renderer() -> &'static Renderer {
-    static R: OnceLock<Renderer> = OnceLock::new();
-    R.get_or_init(Renderer::new)
-}
 
 fn lights() -> Vec<SrbfLight> {
     vec![

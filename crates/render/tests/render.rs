@@ -1,17 +1,15 @@
 //! End-to-end renders of tiny scenes (each well under a second in release): the SRBF render
 //! against the brute-force reference, editing without rebuilding tables, degenerate input.
 
+mod common;
+
+use common::renderer;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::{Groom, GroomParts};
 use cuticle_light::{EnvMap, SrbfLight, evaluate_lights};
-use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, ShadowOptions};
+use cuticle_render::{Image, Method, Scene, SceneSpec, ShadowOptions};
 use glam::{DVec3, Vec3};
-use std::sync::{Arc, OnceLock};
-
-fn renderer() -> &'static Renderer {
-    static R: OnceLock<Renderer> = OnceLock::new();
-    R.get_or_init(Renderer::new)
-}
+use std::sync::Arc;
 
 /// Three SRBF lights (+y up): a warm key light, a cool sky, a dim ground bounce.
 fn lights() -> Vec<SrbfLight> {
