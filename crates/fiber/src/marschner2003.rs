@@ -139,6 +139,13 @@ const MAX_ALPHA_R: f64 = crate::params::MAX_ALPHA_DEG.to_radians();
 
 impl MarschnerParams {
     /// Checks every field, returning the first fault.
+    /// (α_p, β_p) of M_R, M_TT, M_TRT from α_R, β_R (Marschner 2003 Table 1: α_TT = −α_R/2,
+    /// α_TRT = −3α_R/2, β_TT = β_R/2, β_TRT = 2β_R).
+    pub fn longitudinal(&self) -> [(f64, f64); 3] {
+        let (a, b) = (self.alpha_r, self.beta_r);
+        [(a, b), (-0.5 * a, 0.5 * b), (-1.5 * a, 2.0 * b)]
+    }
+
     pub fn validate(&self) -> Result<(), MarschnerError> {
         self.check_finite()?;
         self.check_fiber()?;
@@ -243,18 +250,9 @@ pub struct Marschner2003 {
 impl Marschner2003 {
     pub fn new(params: MarschnerParams) -> Result<Self, MarschnerError> {
         params.validate()?;
-        let (a, b) = (params.alpha_r, params.beta_r);
-        let lobes = [
-            GaussianLobe { alpha: a, beta: b },
-            GaussianLobe {
-                alpha: -0.5 * a,
-                beta: 0.5 * b,
-            },
-            GaussianLobe {
-                alpha: -1.5 * a,
-                beta: 2.0 * b,
-            },
-        ];
+        let lobes = params
+            .longitudinal()
+            .map(|(alpha, beta)| GaussianLobe { alpha, beta });
         Ok(Self {
             params,
             lobes,

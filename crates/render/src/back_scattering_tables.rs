@@ -21,7 +21,7 @@
 use crate::angles::{HALF_PI, deflection, eta_prime, wrap_pi};
 use crate::exact_azimuthal::attenuation;
 use crate::grid::Grid2;
-use crate::hair::Fiber;
+use cuticle_fiber::marschner2003::MarschnerParams;
 
 /// Largest θ_d tabulated.
 const THETA_MAX: f64 = 1.5;
@@ -98,7 +98,7 @@ pub fn averages_from_moments(moments: [f64; 6], d_b: f64) -> [f64; 5] {
 
 /// The stored entry at (θ_d, σ_a): [ā_f, ā_b, α_f, α_b, β_f², β_b²], smooth enough to
 /// interpolate; Zinke's strongly nonlinear combinations are formed after the lookup.
-fn entry(fiber: &Fiber, theta_d: f64, sigma_a: f64) -> [f64; 6] {
+fn entry(fiber: &MarschnerParams, theta_d: f64, sigma_a: f64) -> [f64; 6] {
     let mut forward = [0.0; 3];
     let mut back = [0.0; 3];
     for p in 0..3 {
@@ -125,7 +125,7 @@ pub fn moments(forward: [f64; 3], back: [f64; 3], lobes: [(f64, f64); 3]) -> [f6
 
 impl BackScatteringTables {
     /// Builds the tables for the global parameters of `fiber` (its absorption is an axis).
-    pub fn build(fiber: &Fiber, d_b: f64) -> Self {
+    pub fn build(fiber: &MarschnerParams, d_b: f64) -> Self {
         let grid = Grid2::build(
             (NODES, 0.0, THETA_MAX),
             (NODES, 0.0, (SIGMA_MAX / SIGMA_SCALE).ln_1p()),

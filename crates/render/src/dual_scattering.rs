@@ -25,11 +25,12 @@ use crate::back_scattering_tables::BackScatteringTables;
 use crate::cg_lobes::{Geometry, Lobe, TrtShape, r_coefficients, trt_fit, tt_fit};
 use crate::circular_gaussian as cg;
 use crate::forward_scattering::forward;
-use crate::hair::Fiber;
+use crate::hair::caustic_bandwidth;
 use crate::half_circle::HalfCircle;
 use crate::quadrature::Window;
 use crate::single_scattering::LocalLight;
 use crate::tables::Tables;
+use cuticle_fiber::marschner2003::MarschnerParams;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
@@ -58,7 +59,7 @@ impl Dual<'_> {
     /// unshadowed coefficients L_j, `direct` the transmittances T̃_j.
     pub fn shade(
         &self,
-        fiber: &Fiber,
+        fiber: &MarschnerParams,
         theta_o: f64,
         phi_o: f64,
         lights: &[LocalLight],
@@ -72,7 +73,14 @@ impl Dual<'_> {
     }
 
     /// One light's global and local terms.
-    fn light(&self, fiber: &Fiber, theta_o: f64, phi_o: f64, light: &LocalLight, t: f64) -> DVec3 {
+    fn light(
+        &self,
+        fiber: &MarschnerParams,
+        theta_o: f64,
+        phi_o: f64,
+        light: &LocalLight,
+        t: f64,
+    ) -> DVec3 {
         let energy = light.radiance * srbf_integral(light.bandwidth);
         if energy.max_element() <= 0.0 {
             return DVec3::ZERO;
@@ -110,9 +118,16 @@ impl Dual<'_> {
     }
 
     /// Σ_t ∫ g^u(θ_i; θ_j, σ_f) ½M_t (cos²θ_i/cos²θ_d) 𝒩^G_t dθ_i (eq. 27 without 1/cos θ_j).
-    fn global(&self, fiber: &Fiber, theta_o: f64, theta_j: f64, sigma_f: f64, delta: f64) -> DVec3 {
+    fn global(
+        &self,
+        fiber: &MarschnerParams,
+        theta_o: f64,
+        theta_j: f64,
+        sigma_f: f64,
+        delta: f64,
+    ) -> DVec3 {
         let shape = TrtShape {
-            caustic_bandwidth: fiber.caustic_bandwidth(),
+            caustic_bandwidth: caustic_bandwidth(fiber),
             caustic_fade: fiber.caustic_fade,
         };
         let w = self.half.cosines(delta);
@@ -165,7 +180,14 @@ impl Dual<'_> {
 
     /// Per channel Ā_b 𝒩^L ∫ g^u(θ_i; θ_j, σ) ½M_b (cos²θ_i/cos²θ_d) dθ_i (eq. 29 without
     /// 1/cos θ_j), `azimuth` being 𝒩^L.
-    fn local(&self, fiber: &Fiber, theta_o: f64, theta_j: f64, sigma: f64, azimuth: f64) -> DVec3 {
+    fn local(
+        &self,
+        fiber: &MarschnerParams,
+        theta_o: f64,
+        theta_j: f64,
+        sigma: f64,
+        azimuth: f64,
+    ) -> DVec3 {
         if azimuth <= 0.0 {
             return DVec3::ZERO;
         }

@@ -118,8 +118,9 @@ impl HairParams {
         }
     }
 
-    /// The shading parameters of a strand with this appearance.
-    pub fn fiber(&self, appearance: Option<&Appearance>) -> Fiber {
+    /// The shading parameters of a strand with this appearance: the exact model's parameters,
+    /// which both the circular-Gaussian path and the brute-force reference read.
+    pub fn fiber(&self, appearance: Option<&Appearance>) -> MarschnerParams {
         let own = appearance.and_then(|a| a.absorption).map(|a| match a {
             Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
             Absorption::Melanin {
@@ -131,7 +132,7 @@ impl HairParams {
             Some(m) => DVec3::from_array(m),
             None => own.unwrap_or(DVec3::from_array(self.default_mu_a)),
         };
-        Fiber {
+        MarschnerParams {
             eta: self.eta,
             alpha_r: self.alpha_r_deg.to_radians(),
             beta_r: self.beta_r_deg.to_radians(),
@@ -139,48 +140,14 @@ impl HairParams {
             eccentricity: self.eccentricity,
             caustic_width: self.caustic_width_deg.to_radians(),
             caustic_fade: self.caustic_fade,
-        }
-    }
-}
-
-/// What shading one strand needs (radians).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Fiber {
-    pub eta: f64,
-    pub alpha_r: f64,
-    pub beta_r: f64,
-    pub mu_a: DVec3,
-    pub eccentricity: f64,
-    /// w_c as Marschner's standard deviation.
-    pub caustic_width: f64,
-    pub caustic_fade: f64,
-}
-
-impl Fiber {
-    /// (α_p, β_p) of R, TT, TRT (Marschner 2003 Table 1).
-    pub fn longitudinal(&self) -> [(f64, f64); 3] {
-        let (a, b) = (self.alpha_r, self.beta_r);
-        [(a, b), (-0.5 * a, 0.5 * b), (-1.5 * a, 2.0 * b)]
-    }
-
-    /// λ₁ of the TRT caustic Gaussians: a circular Gaussian exp(−x²/λ²) has deviation λ/√2,
-    /// so Marschner's glint of deviation w_c is λ₁ = √2 w_c (seed 004 sets λ₁ = w_c in its own
-    /// bandwidth convention).
-    pub fn caustic_bandwidth(&self) -> f64 {
-        SQRT_2 * self.caustic_width
-    }
-
-    /// The exact model's parameters for the brute-force reference.
-    pub fn marschner(&self) -> MarschnerParams {
-        MarschnerParams {
-            eta: self.eta,
-            alpha_r: self.alpha_r,
-            beta_r: self.beta_r,
-            mu_a: self.mu_a,
-            eccentricity: self.eccentricity,
-            caustic_width: self.caustic_width,
-            caustic_fade: self.caustic_fade,
             ..MarschnerParams::default()
         }
     }
+}
+
+/// λ₁ of the TRT caustic Gaussians: a circular Gaussian exp(−x²/λ²) has deviation λ/√2, so
+/// Marschner's glint of deviation w_c is λ₁ = √2 w_c (seed 004 sets λ₁ = w_c in its own
+/// bandwidth convention).
+pub fn caustic_bandwidth(fiber: &MarschnerParams) -> f64 {
+    SQRT_2 * fiber.caustic_width
 }

@@ -37,7 +37,7 @@ pub mod tables;
 pub mod taylor;
 
 pub use camera::Camera;
-pub use hair::{Fiber, HairParams};
+pub use hair::HairParams;
 pub use progress::Progress;
 pub use renderer::{Image, Prepared, Renderer, Timings};
 pub use scene::{Method, Scene, SceneError, SceneSpec};

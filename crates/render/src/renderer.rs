@@ -10,7 +10,6 @@ use crate::brute::{self, Directional};
 use crate::camera::View;
 use crate::dual_scattering::Dual;
 use crate::fiber_frames::{frame_at, strand_of_points};
-use crate::hair::Fiber;
 use crate::half_circle::HalfCircle;
 use crate::progress::{Counter, Progress};
 use crate::raster::{Coverage, EMPTY, rasterize};
@@ -19,6 +18,7 @@ use crate::shadow::transmittance;
 use crate::single_scattering::{LocalLight, shade};
 use crate::tables::Tables;
 use cuticle_fiber::Marschner2003;
+use cuticle_fiber::marschner2003::MarschnerParams;
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -138,7 +138,7 @@ impl Renderer {
         progress: Progress,
     ) -> Vec<DVec3> {
         let counter = Counter::new(prepared.points.len(), progress);
-        let fibers: Vec<Fiber> = (0..scene.groom.strand_count())
+        let fibers: Vec<MarschnerParams> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
             .collect();
         let nl = prepared.lights.len();
@@ -195,8 +195,7 @@ impl Renderer {
                             single + multiple
                         }
                         Method::Brute => {
-                            let model = Marschner2003::new(fiber.marschner())
-                                .expect("validated parameters");
+                            let model = Marschner2003::new(*fiber).expect("validated parameters");
                             let dirs: Vec<Directional> = prepared
                                 .lights
                                 .iter()

@@ -4,9 +4,10 @@
 //! one by the linear quadrature (§4.2.2); eccentricity through η̄* (eqs. 24–26).
 
 use crate::cg_lobes::{Geometry, TrtShape, r_convolved, trt_fit, tt_fit};
-use crate::hair::Fiber;
+use crate::hair::caustic_bandwidth;
 use crate::quadrature::Window;
 use crate::tables::Tables;
+use cuticle_fiber::marschner2003::MarschnerParams;
 use glam::DVec3;
 
 /// An SRBF light seen from a fiber: its centre's angles in the fiber frame, its bandwidth, and
@@ -33,7 +34,7 @@ struct Sample {
 /// exactly nothing and are skipped.
 pub fn shade(
     tables: &Tables,
-    fiber: &Fiber,
+    fiber: &MarschnerParams,
     theta_o: f64,
     phi_o: f64,
     lights: &[LocalLight],
@@ -54,7 +55,7 @@ pub fn shade(
 /// ℳ_R, ℳ_TT, ℳ_TRT of one light (eq. 11).
 pub fn modes(
     tables: &Tables,
-    fiber: &Fiber,
+    fiber: &MarschnerParams,
     theta_o: f64,
     phi_o: f64,
     light: &LocalLight,
@@ -91,7 +92,7 @@ pub fn modes(
 }
 
 /// 𝒩_t at one sample (eqs. 14, 12 with 16, 12 with 20 and 25).
-fn inner(tables: &Tables, fiber: &Fiber, t: usize, s: Sample) -> DVec3 {
+fn inner(tables: &Tables, fiber: &MarschnerParams, t: usize, s: Sample) -> DVec3 {
     match t {
         0 => DVec3::splat(r_convolved(tables, fiber.eta, s.theta_d, s.lambda, s.delta)),
         1 => {
@@ -103,7 +104,7 @@ fn inner(tables: &Tables, fiber: &Fiber, t: usize, s: Sample) -> DVec3 {
         _ => {
             let eta = mean_eta_star(tables, fiber, s.lambda, s.phi_sum);
             let shape = TrtShape {
-                caustic_bandwidth: fiber.caustic_bandwidth(),
+                caustic_bandwidth: caustic_bandwidth(fiber),
                 caustic_fade: fiber.caustic_fade,
             };
             let g = Geometry::new(tables, eta, s.theta_d);
@@ -119,7 +120,7 @@ fn inner(tables: &Tables, fiber: &Fiber, t: usize, s: Sample) -> DVec3 {
 
 /// η̄* (eq. 26): η* of eq. 24 averaged over the light's azimuthal Gaussian, with
 /// ⟨cos 2φ_h⟩ = 2𝒞₂(λ′, φ_o + φ_j)/Z − 1 from the R-mode table.
-pub fn mean_eta_star(tables: &Tables, fiber: &Fiber, lambda: f64, phi_sum: f64) -> f64 {
+pub fn mean_eta_star(tables: &Tables, fiber: &MarschnerParams, lambda: f64, phi_sum: f64) -> f64 {
     if fiber.eccentricity == 1.0 {
         return fiber.eta;
     }
