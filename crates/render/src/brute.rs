@@ -2,10 +2,11 @@
 //! lights (a cube map of n × n texels a face, each carrying the map's mean radiance over the
 //! texel times its solid angle; n = 16 gives the paper's 1536), shaded with the exact
 //! Marschner 2003 model of the fiber crate, L_o = Σ_k E_k T_k S(ω_k, ω_o) cos θ_k / cos θ_o
-//! (the crate's units, see lib.rs), with the same visibility and shadow maps as the SRBF path.
+//! (the crate's units, see lib.rs), with the same visibility and shadow maps as the SRBF path;
+//! multiple scattering in [`crate::brute_multiple`].
 
 use crate::scene::{Scene, light_to_world};
-use cuticle_fiber::{FiberFrame, FiberModel, Marschner2003};
+use cuticle_fiber::{FiberAngles, FiberFrame, FiberModel, Marschner2003};
 use glam::DVec3;
 
 /// One directional light: world direction toward it, and irradiance-weight E = L Δω.
@@ -66,24 +67,39 @@ fn cube_direction(face: usize, u: f64, v: f64) -> DVec3 {
     d.normalize()
 }
 
-/// L_o at a point with frame `frame`, viewed along `wo` (toward the viewer), from every light
+/// A directional light seen from a fiber: its angles in the fiber frame and E = L Δω.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LocalDirectional {
+    pub angles: FiberAngles,
+    pub power: DVec3,
+}
+
+/// `lights` in the fiber frame `frame`.
+pub fn local_lights(frame: &FiberFrame, lights: &[Directional]) -> Vec<LocalDirectional> {
+    lights
+        .iter()
+        .map(|l| LocalDirectional {
+            angles: frame.angles(l.direction),
+            power: l.power,
+        })
+        .collect()
+}
+
+/// Single-scattering L_o toward `ao` (the viewer's angles in the fiber frame) from every light
 /// `k` with transmittance `shadow[k]`.
 pub fn shade(
     model: &Marschner2003,
-    frame: &FiberFrame,
-    wo: DVec3,
-    lights: &[Directional],
+    ao: FiberAngles,
+    lights: &[LocalDirectional],
     shadow: &[f32],
 ) -> DVec3 {
-    let ao = frame.angles(wo);
     let cos_o = ao.theta.cos().max(1e-4);
     lights
         .iter()
         .zip(shadow)
         .map(|(l, &t)| {
-            let ai = frame.angles(l.direction);
-            let s = model.eval(ai, ao).total();
-            l.power * s * (t as f64 * ai.theta.cos() / cos_o)
+            let s = model.eval(l.angles, ao).total();
+            l.power * s * (t as f64 * l.angles.theta.cos() / cos_o)
         })
         .sum()
 }

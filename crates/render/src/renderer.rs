@@ -7,8 +7,10 @@
 
 use crate::back_scattering_tables::BackScatteringTables;
 use crate::brute::{self, Directional};
+use crate::brute_multiple::BruteDual;
 use crate::camera::View;
 use crate::dual_scattering::Dual;
+use crate::exact_half_circle::ExactHalfCircle;
 use crate::fiber_frames::{frame_at, strand_of_points};
 use crate::half_circle::HalfCircle;
 use crate::progress::{Counter, Progress};
@@ -156,6 +158,24 @@ impl Renderer {
             d_b: hair.d_b,
             m,
         });
+        let exact_half = (method == Method::Brute && scene.spec.multiple)
+            .then(|| ExactHalfCircle::build(hair.eta));
+        let brute_dual = back
+            .as_ref()
+            .zip(exact_half.as_ref())
+            .map(|(back, half)| BruteDual {
+                half,
+                back,
+                d_b: hair.d_b,
+            });
+        let directional: Vec<Directional> = prepared
+            .lights
+            .iter()
+            .map(|l| Directional {
+                direction: l.0,
+                power: l.2,
+            })
+            .collect();
         prepared
             .points
             .par_iter()
@@ -196,15 +216,12 @@ impl Renderer {
                         }
                         Method::Brute => {
                             let model = Marschner2003::new(*fiber).expect("validated parameters");
-                            let dirs: Vec<Directional> = prepared
-                                .lights
-                                .iter()
-                                .map(|l| Directional {
-                                    direction: l.0,
-                                    power: l.2,
-                                })
-                                .collect();
-                            brute::shade(&model, &frame, wo, &dirs, shadow)
+                            let lights = brute::local_lights(&frame, &directional);
+                            let ao = frame.angles(wo);
+                            let single = brute::shade(&model, ao, &lights, shadow);
+                            let multiple = brute_dual
+                                .map_or(DVec3::ZERO, |d| d.shade(fiber, ao, &lights, shadow));
+                            single + multiple
                         }
                     }
                 },

@@ -1,14 +1,15 @@
 //! Dual-scattering multiple scattering end to end, on tiny scenes (each well under a second in
-//! release): it adds energy, more for lighter hair; it is off when `multiple` is; an isolated
-//! strand gets no global term.
+//! release, the brute force's a few): it adds energy, more for lighter hair, in the SRBF render
+//! and in the brute force; the two agree under a narrow light; it is off when `multiple` is; an
+//! isolated strand gets no global term.
 
 mod common;
 
 use common::renderer;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::{Groom, GroomParts};
-use cuticle_light::{EnvMap, SrbfLight};
-use cuticle_render::{Image, Method, Scene, SceneSpec, ShadowOptions};
+use cuticle_light::{EnvMap, SrbfLight, evaluate_lights};
+use cuticle_render::{Image, Method, Prepared, Renderer, Scene, SceneSpec, ShadowOptions};
 use glam::Vec3;
 
 fn lights() -> Vec<SrbfLight> {
@@ -108,4 +109,97 @@ fn isolated_strand_gets_almost_no_global_multiple_scattering() {
     .unwrap();
     let alone = global_gain(strand);
     assert!((0.0..0.02).contains(&alone), "alone {alone}");
+}
+
+/// The brute force's scene: the environment the lights describe, as 6 n² directional lights.
+fn brute_scene(mut spec: SceneSpec, groom: Groom, lights: Vec<SrbfLight>, n: usize) -> Scene {
+    spec.method = Method::Brute;
+    spec.brute_grid = n;
+    let env = EnvMap::from_fn(128, 64, |d| evaluate_lights(&lights, d).as_vec3());
+    Scene::from_parts(spec, groom, env, lights)
+}
+
+/// Per visible point: (single scattering, multiple scattering alone) of `scene`'s hair with
+/// absorption `mu_a`, re-shading one preparation.
+fn single_and_multiple(
+    r: &Renderer,
+    scene: &Scene,
+    prepared: &Prepared,
+    mu_a: f64,
+) -> (Vec<f64>, Vec<f64>) {
+    let mut scene = scene.clone();
+    scene.spec.hair.mu_a = Some([mu_a; 3]);
+    let mut shade = |multiple| {
+        scene.spec.multiple = multiple;
+        r.shade(&scene, prepared)
+    };
+    let (on, off) = (shade(true), shade(false));
+    let single = off.iter().map(|c| c.element_sum()).collect();
+    let multiple = on
+        .iter()
+        .zip(&off)
+        .map(|(a, b)| (*a - *b).element_sum())
+        .collect();
+    (single, multiple)
+}
+
+/// The brute force's multiple scattering (exact functions, directional lights: 6 · 6² here)
+/// adds energy at every point, never removes any, and adds more, relative to single
+/// scattering, to lighter hair (measured gains 0.116 for σ_a = 0.1, 0.0019 for σ_a = 1.5).
+#[test]
+fn brute_force_multiple_scattering_adds_more_to_lighter_hair() {
+    let r = renderer();
+    let scene = brute_scene(spec(true, 0.1), groom(400), lights(), 6);
+    let (_, prepared, _) = r.render(&scene);
+    let gain = |mu: f64| {
+        let (single, multiple) = single_and_multiple(r, &scene, &prepared, mu);
+        assert!(
+            multiple.iter().all(|&m| m >= -1e-9),
+            "multiple scattering removed energy"
+        );
+        multiple.iter().sum::<f64>() / single.iter().sum::<f64>()
+    };
+    let (light, dark) = (gain(0.1), gain(1.5));
+    eprintln!("brute-force gains: light {light:.4}, dark {dark:.4}");
+    assert!(dark > 0.0, "dark gain {dark}");
+    assert!(light > 2.0 * dark, "light gain {light}, dark gain {dark}");
+}
+
+/// Multiple scattering alone, SRBF against brute force, under the key light alone (λ = 0.35,
+/// where the SRBF windows' Gaussian approximations hold) on light hair (σ_a = 0.1) with dense
+/// shadows (density 3, so the global term dominates), the brute force with 6 · 10² lights:
+/// over visible points, relative RMSE below 0.65 (measured 0.46; 0.48 with 6 · 16²) and the
+/// SRBF's total within 30% of the brute force's (measured 19% below). They differ by design in the azimuthal functions (circular-Gaussian fits
+/// against exact), in one σ̄_f for all channels against one each, and in T̃ (the SRBF light's
+/// filtered opacity against each directional light's own), which forward scattering reads.
+/// Under this scene's wide sky light (λ = 1.2, centred on the fibers' axis) the SRBF path's
+/// multiple scattering is several times the brute force's: the SRBF's Gaussian in θ over
+/// cos θ_j does not hold for wide lights near the pole.
+#[test]
+fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
+    let r = renderer();
+    let key = vec![lights()[0]];
+    let mut s = spec(true, 0.1);
+    s.shadows.density = 3.0;
+    let srbf = Scene::from_parts(
+        s.clone(),
+        groom(400),
+        EnvMap::from_fn(64, 32, |_| Vec3::ZERO),
+        key.clone(),
+    );
+    let brute = brute_scene(s, groom(400), key, 10);
+    let (_, ps, _) = r.render(&srbf);
+    let (_, pb, _) = r.render(&brute);
+    assert_eq!(ps.points, pb.points);
+    let (_, a) = single_and_multiple(r, &srbf, &ps, 0.1);
+    let (_, b) = single_and_multiple(r, &brute, &pb, 0.1);
+    let num: f64 = a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum();
+    let den: f64 = b.iter().map(|y| y * y).sum();
+    let (rmse, ratio) = (
+        (num / den).sqrt(),
+        a.iter().sum::<f64>() / b.iter().sum::<f64>(),
+    );
+    eprintln!("multiple scattering alone: relative RMSE {rmse:.4}, SRBF / brute {ratio:.4}");
+    assert!(rmse < 0.65, "relative RMSE {rmse}");
+    assert!((ratio - 1.0).abs() < 0.3, "SRBF / brute energy {ratio}");
 }

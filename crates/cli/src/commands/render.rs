@@ -291,13 +291,18 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
 
 /// Whether and how multiple scattering was rendered.
 fn multiple_json(scene: &Scene) -> Value {
-    let srbf = scene.spec.method == Method::Srbf;
+    let terms = match scene.spec.method {
+        Method::Srbf => "circular-Gaussian fits against SRBF windows (seed 004 eqs. 27-31)",
+        Method::Brute => {
+            "exact azimuthal functions and Marschner lobes per directional light, integrated numerically"
+        }
+    };
     json!({
-        "enabled": scene.spec.multiple && srbf,
+        "enabled": scene.spec.multiple,
         "model": "dual scattering (Zinke et al. 2008; seed 004 section 4.3)",
+        "terms": terms,
         "d_b": scene.spec.hair.d_b,
         "d_f": cuticle_render::forward_scattering::DENSITY_FACTOR,
-        "note": if srbf { "" } else { "brute-force dual scattering not implemented yet" },
     })
 }
 
