@@ -7,6 +7,40 @@ pub fn wrap_pi(x: f64) -> f64 {
     cuticle_fiber::wrap_pi(x)
 }
 
+/// A viewing inclination θ_o with its sine and cosine, so that each θ_i sample of the
+/// quadratures needs one `sin_cos` for cos θ_i and cos²θ_d = (1 + cos(θ_o − θ_i))/2.
+#[derive(Clone, Copy, Debug)]
+pub struct Outgoing {
+    pub theta: f64,
+    sin: f64,
+    cos: f64,
+}
+
+/// One incident sample θ_i seen from an [`Outgoing`] θ_o.
+#[derive(Clone, Copy, Debug)]
+pub struct Incident {
+    pub cos_i: f64,
+    /// θ_d = (θ_o − θ_i)/2.
+    pub theta_d: f64,
+    pub cos2_d: f64,
+}
+
+impl Outgoing {
+    pub fn new(theta: f64) -> Self {
+        let (sin, cos) = theta.sin_cos();
+        Self { theta, sin, cos }
+    }
+
+    pub fn incident(&self, theta_i: f64) -> Incident {
+        let (sin_i, cos_i) = theta_i.sin_cos();
+        Incident {
+            cos_i,
+            theta_d: 0.5 * (self.theta - theta_i),
+            cos2_d: 0.5 * (1.0 + self.cos * cos_i + self.sin * sin_i),
+        }
+    }
+}
+
 /// Hermite smoothstep of x from a to b.
 pub fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
     let s = ((x - a) / (b - a)).clamp(0.0, 1.0);
@@ -36,3 +70,20 @@ pub fn deflection_slope(p: u32, h: f64, eta_prime: f64) -> f64 {
 
 /// π/2.
 pub const HALF_PI: f64 = PI / 2.0;
+
+#[cfg(test)]
+mod tests {
+    use super::Outgoing;
+
+    /// cos θ_i and cos²θ_d from one sin_cos match their direct forms.
+    #[test]
+    fn incident_matches_direct_trigonometry() {
+        for &(o, i) in &[(0.3, -1.2), (-1.4, 1.5), (0.0, 0.0), (1.1, 0.9)] {
+            let s = Outgoing::new(o).incident(i);
+            let td: f64 = 0.5 * (o - i);
+            assert!((s.cos_i - i.cos()).abs() < 1e-15);
+            assert!((s.theta_d - td).abs() < 1e-15);
+            assert!((s.cos2_d - td.cos().powi(2)).abs() < 1e-14);
+        }
+    }
+}

@@ -46,9 +46,9 @@ const MIN_BANDWIDTH: f64 = 1e-3;
 
 /// C_0 … C_6 of N_R's Schlick polynomial in |cos(φ/2)| (eq. 13): with c = cos θ_d and
 /// (1 − c|cos(φ/2)|)⁵ expanded, C₁ = ¼ and C_{n+1} = ¼ (1 − F₀) (5 choose n) (−c)ⁿ, n = 1…5.
-pub fn r_coefficients(eta: f64, theta_d: f64) -> [f64; 7] {
+pub fn r_coefficients(eta: f64, cos_theta_d: f64) -> [f64; 7] {
     const BINOMIAL: [f64; 6] = [1.0, 5.0, 10.0, 10.0, 5.0, 1.0];
-    let (f0, c) = (schlick_f0(eta), theta_d.cos());
+    let (f0, c) = (schlick_f0(eta), cos_theta_d);
     let mut out = [0.0; 7];
     out[1] = 0.25;
     let mut power = 1.0;
@@ -61,14 +61,20 @@ pub fn r_coefficients(eta: f64, theta_d: f64) -> [f64; 7] {
 
 /// N_R(φ) from its polynomial (eq. 13).
 pub fn r_eval(eta: f64, theta_d: f64, phi: f64) -> f64 {
-    let c = r_coefficients(eta, theta_d);
+    let c = r_coefficients(eta, theta_d.cos());
     let x = (0.5 * phi).cos().abs();
     c.iter().rev().fold(0.0, |acc, &ck| acc * x + ck)
 }
 
 /// 𝒩_R = Σ_k C_k 𝒞_k(λ′, δ) (eq. 14).
-pub fn r_convolved(tables: &Tables, eta: f64, theta_d: f64, lambda_light: f64, delta: f64) -> f64 {
-    let c = r_coefficients(eta, theta_d);
+pub fn r_convolved(
+    tables: &Tables,
+    eta: f64,
+    cos_theta_d: f64,
+    lambda_light: f64,
+    delta: f64,
+) -> f64 {
+    let c = r_coefficients(eta, cos_theta_d);
     let t = tables.cosine_normalised(lambda_light, delta);
     let sum: f64 = (1..7).map(|k| c[k] * t[k]).sum();
     sum * t[7].exp()
@@ -170,7 +176,7 @@ fn trt_energy_of(g: &Geometry, sigma_a: f64) -> f64 {
 }
 
 /// Parameters of the TRT fit that do not depend on absorption.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TrtShape {
     /// λ₁: bandwidth of the two caustic Gaussians.
     pub caustic_bandwidth: f64,
@@ -178,7 +184,9 @@ pub struct TrtShape {
     pub caustic_fade: f64,
 }
 
-/// N_TRT as three (η′ < 2) or one circular Gaussian (eqs. 20–23 and the blend of §4.2.4).
+/// N_TRT as three (η′ < 2) or one circular Gaussian (eqs. 20–23 and the blend of §4.2.4), as
+/// [glint at +φ*, glint at −φ*, centre]; beyond η′ = 2 the one lobe fills both glint slots at
+/// φ* = 0, half its weight in each, and the centre slot is empty.
 pub fn trt_lobes(
     tables: &Tables,
     eta: f64,
@@ -200,11 +208,6 @@ pub fn trt_fit(g: &Geometry, sigma_a: f64, shape: TrtShape) -> [Lobe; 3] {
         .map(|&(w, path)| w * (-4.0 * sp * path).exp())
         .sum();
     let l1 = shape.caustic_bandwidth;
-    let none = Lobe {
-        weight: 0.0,
-        centre: 0.0,
-        bandwidth: 1.0,
-    };
     if let Some(phi_star) = g.phi_star {
         let b2 = at_zero * (1.0 - cg::eval(0.0, phi_star, l1)).powi(2);
         let centre = Lobe {
@@ -224,15 +227,22 @@ pub fn trt_fit(g: &Geometry, sigma_a: f64, shape: TrtShape) -> [Lobe; 3] {
     let l3 = cg::bandwidth_for_integral(energy / b3).clamp(MIN_BANDWIDTH, MAX_BANDWIDTH);
     let s = smoothstep(2.0, 2.0 + shape.caustic_fade, g.eta_prime);
     let blended = l1 + s * (l3 - l1);
+    // The one lobe as the two glints merged at φ* = 0, each with half of b₃λ₃/λ′₃ (§4.2.4, with
+    // exact integrals so the lobe keeps the energy ∫N_TRT): the slots stay continuous across
+    // η′ = 2, where the glints meet, so a table over θ_d may interpolate them.
+    let merged = Lobe {
+        weight: 0.5 * energy / cg::integral(blended),
+        centre: 0.0,
+        bandwidth: blended,
+    };
     [
+        merged,
+        merged,
         Lobe {
-            // b₃λ₃/λ′₃ of §4.2.4 with exact integrals: the lobe keeps the energy ∫N_TRT.
-            weight: energy / cg::integral(blended),
+            weight: 0.0,
             centre: 0.0,
-            bandwidth: blended,
+            bandwidth: MIN_BANDWIDTH,
         },
-        none,
-        none,
     ]
 }
 

@@ -21,16 +21,15 @@
 //! shares.
 
 use crate::angles::wrap_pi;
-use crate::back_scattering_tables::BackScatteringTables;
-use crate::cg_lobes::{Geometry, Lobe, TrtShape, r_coefficients, trt_fit, tt_fit};
+use crate::angles::{Incident, Outgoing};
+use crate::back_scattering_tables::{Averages, BackScatteringTables};
+use crate::cg_lobes::r_coefficients;
 use crate::circular_gaussian as cg;
 use crate::forward_scattering::forward;
-use crate::hair::caustic_bandwidth;
 use crate::half_circle::HalfCircle;
+use crate::lobe_table::AzimuthalLobes;
 use crate::quadrature::Window;
-use crate::single_scattering::LocalLight;
-use crate::tables::Tables;
-use cuticle_fiber::marschner2003::MarschnerParams;
+use crate::single_scattering::{LocalLight, ShadingFiber};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
@@ -40,7 +39,6 @@ const NEGLIGIBLE: f64 = 1e-5;
 /// Everything multiple scattering reads besides the point and its lights.
 #[derive(Clone, Copy, Debug)]
 pub struct Dual<'a> {
-    pub tables: &'a Tables,
     pub half: &'a HalfCircle,
     pub back: &'a BackScatteringTables,
     pub d_b: f64,
@@ -57,9 +55,9 @@ pub fn srbf_integral(lambda: f64) -> f64 {
 impl Dual<'_> {
     /// Multiple-scattering radiance toward (θ_o, φ_o) from every light; `lights` carry the
     /// unshadowed coefficients L_j, `direct` the transmittances T̃_j.
-    pub fn shade(
+    pub fn shade<L: AzimuthalLobes>(
         &self,
-        fiber: &MarschnerParams,
+        fiber: ShadingFiber<L>,
         theta_o: f64,
         phi_o: f64,
         lights: &[LocalLight],
@@ -73,9 +71,9 @@ impl Dual<'_> {
     }
 
     /// One light's global and local terms.
-    fn light(
+    fn light<L: AzimuthalLobes>(
         &self,
-        fiber: &MarschnerParams,
+        fiber: ShadingFiber<L>,
         theta_o: f64,
         phi_o: f64,
         light: &LocalLight,
@@ -88,19 +86,29 @@ impl Dual<'_> {
         let cos_j = light.theta.cos().max(1e-4);
         let delta = wrap_pi(phi_o - light.phi);
         let fw: [_; 3] =
-            std::array::from_fn(|c| forward(t, &self.back.at(light.theta, fiber.mu_a[c])));
+            std::array::from_fn(|c| forward(t, &self.back.at(light.theta, fiber.params.mu_a[c])));
         let scattered = DVec3::from_array(fw.map(|f| f.scattered));
         let light_var = srbf_deviation(light.bandwidth).powi(2);
         let direct_azimuth = self.half.share(light.bandwidth / cos_j, delta) / PI;
-        let mut out = t
-            * self.d_b
-            * self.local(
-                fiber,
-                theta_o,
-                light.theta,
-                light_var.sqrt(),
-                direct_azimuth,
-            );
+        let outgoing = Outgoing::new(theta_o);
+        let theta_d = 0.5 * (theta_o - light.theta);
+        let back = fiber
+            .params
+            .mu_a
+            .to_array()
+            .map(|mu| self.back.at(theta_d, mu));
+        let mut out = if t > 0.0 {
+            t * self.d_b
+                * self.local(
+                    &back,
+                    outgoing,
+                    light.theta,
+                    light_var.sqrt(),
+                    direct_azimuth,
+                )
+        } else {
+            DVec3::ZERO
+        };
         if scattered.max_element() > NEGLIGIBLE {
             let weight = scattered.element_sum();
             let spread = (0..3)
@@ -112,26 +120,24 @@ impl Dual<'_> {
             out += scattered
                 * (self.global(fiber, theta_o, light.theta, sigma_f, delta)
                     + self.d_b
-                        * self.local(fiber, theta_o, light.theta, sigma_f, scattered_azimuth));
+                        * self.local(&back, outgoing, light.theta, sigma_f, scattered_azimuth));
         }
         energy * out / cos_j
     }
 
     /// Σ_t ∫ g^u(θ_i; θ_j, σ_f) ½M_t (cos²θ_i/cos²θ_d) 𝒩^G_t dθ_i (eq. 27 without 1/cos θ_j).
-    fn global(
+    fn global<L: AzimuthalLobes>(
         &self,
-        fiber: &MarschnerParams,
+        fiber: ShadingFiber<L>,
         theta_o: f64,
         theta_j: f64,
         sigma_f: f64,
         delta: f64,
     ) -> DVec3 {
-        let shape = TrtShape {
-            caustic_bandwidth: caustic_bandwidth(fiber),
-            caustic_fade: fiber.caustic_fade,
-        };
         let w = self.half.cosines(delta);
-        let lobes = fiber.longitudinal();
+        let eta = fiber.params.eta;
+        let lobes = fiber.params.longitudinal();
+        let outgoing = Outgoing::new(theta_o);
         (0..3)
             .map(|t| {
                 let (alpha, beta) = lobes[t];
@@ -141,49 +147,43 @@ impl Dual<'_> {
                     return DVec3::ZERO;
                 }
                 window.integrate(self.m, |theta_i| {
-                    let cos_i = theta_i.cos();
-                    let theta_d = 0.5 * (theta_o - theta_i);
+                    let Incident {
+                        cos_i,
+                        theta_d,
+                        cos2_d,
+                    } = outgoing.incident(theta_i);
                     let n = match t {
-                        0 => DVec3::splat(r_half(fiber.eta, theta_d, &w)),
+                        0 => DVec3::splat(r_half(eta, cos2_d.sqrt(), &w)),
                         1 => {
-                            let g = Geometry::new(self.tables, fiber.eta, theta_d);
+                            let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
-                                self.lobe_half(&tt_fit(&g, fiber.mu_a[c]), delta)
+                                tt.weight[c] * self.unit_half(tt.bandwidth[c], delta - PI)
                             }))
                         }
                         _ => {
-                            let g = Geometry::new(self.tables, fiber.eta, theta_d);
-                            DVec3::from_array(std::array::from_fn(|c| {
-                                trt_fit(&g, fiber.mu_a[c], shape)
-                                    .iter()
-                                    .map(|l| self.lobe_half(l, delta))
-                                    .sum()
-                            }))
+                            let trt = fiber.lobes.trt(eta, theta_d);
+                            trt.weighted_sum(|s, bandwidth| {
+                                self.unit_half(bandwidth, delta - trt.centre[s])
+                            })
                         }
                     };
-                    n * (cos_i * cos_i / theta_d.cos().powi(2))
+                    n * (cos_i * cos_i / cos2_d)
                 })
             })
             .sum()
     }
 
-    /// (1/π) ∫ over the half circle around δ of b g^c(φ; μ, λ).
-    fn lobe_half(&self, lobe: &Lobe, delta: f64) -> f64 {
-        if lobe.weight == 0.0 {
-            return 0.0;
-        }
-        lobe.weight
-            * cg::integral(lobe.bandwidth)
-            * self.half.share(lobe.bandwidth, delta - lobe.centre)
-            / PI
+    /// (1/π) ∫ over the half circle around `offset` = δ − μ of g^c(φ; μ, λ).
+    fn unit_half(&self, bandwidth: f64, offset: f64) -> f64 {
+        cg::integral(bandwidth) * self.half.share(bandwidth, offset) / PI
     }
 
     /// Per channel Ā_b 𝒩^L ∫ g^u(θ_i; θ_j, σ) ½M_b (cos²θ_i/cos²θ_d) dθ_i (eq. 29 without
-    /// 1/cos θ_j), `azimuth` being 𝒩^L.
+    /// 1/cos θ_j), `azimuth` being 𝒩^L and `back` each channel's averages at θ_d of the light.
     fn local(
         &self,
-        fiber: &MarschnerParams,
-        theta_o: f64,
+        back: &[Averages; 3],
+        outgoing: Outgoing,
         theta_j: f64,
         sigma: f64,
         azimuth: f64,
@@ -191,21 +191,20 @@ impl Dual<'_> {
         if azimuth <= 0.0 {
             return DVec3::ZERO;
         }
-        let theta_d = 0.5 * (theta_o - theta_j);
         DVec3::from_array(std::array::from_fn(|c| {
-            let a = self.back.at(theta_d, fiber.mu_a[c]);
+            let a = &back[c];
             if a.back <= 0.0 {
                 return 0.0;
             }
             let window = Window::normal_product(
                 theta_j,
                 sigma,
-                2.0 * a.back_shift - theta_o,
+                2.0 * a.back_shift - outgoing.theta,
                 2.0 * a.back_width,
             );
             let integral = window.integrate(self.m, |theta_i| {
-                let d = 0.5 * (theta_o - theta_i);
-                DVec3::splat(theta_i.cos().powi(2) / d.cos().powi(2))
+                let s = outgoing.incident(theta_i);
+                DVec3::splat(s.cos_i * s.cos_i / s.cos2_d)
             });
             a.back * azimuth * integral.x
         }))
@@ -213,8 +212,8 @@ impl Dual<'_> {
 }
 
 /// 𝒩^G_R = (1/π) Σ_k C_k W_k(δ) (eqs. 13, 28).
-fn r_half(eta: f64, theta_d: f64, w: &[f64; 7]) -> f64 {
-    let c = r_coefficients(eta, theta_d);
+fn r_half(eta: f64, cos_theta_d: f64, w: &[f64; 7]) -> f64 {
+    let c = r_coefficients(eta, cos_theta_d);
     (1..7).map(|k| c[k] * w[k]).sum::<f64>() / PI
 }
 

@@ -65,8 +65,12 @@ fn node(a: f64, b: f64, n: usize, i: usize) -> f64 {
     a + (b - a) * i as f64 / (n - 1) as f64
 }
 
-/// The cell index and fraction of `x` on `n` nodes over [a, b], clamped.
+/// The cell index and fraction of `x` on `n` nodes over [a, b], clamped; an axis with b = a
+/// (a table constant along it) always reads its first cell.
 fn cell(a: f64, b: f64, n: usize, x: f64) -> (usize, f64) {
+    if b <= a {
+        return (0, 0.0);
+    }
     let t = ((x - a) / (b - a)).clamp(0.0, 1.0) * (n - 1) as f64;
     let i = (t as usize).min(n - 2);
     (i, t - i as f64)

@@ -28,6 +28,8 @@ pub mod fresnel;
 pub mod grid;
 pub mod hair;
 pub mod half_circle;
+pub mod last_built;
+pub mod lobe_table;
 pub mod progress;
 pub mod quadrature;
 pub mod raster;

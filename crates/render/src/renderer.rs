@@ -9,15 +9,18 @@ use crate::back_scattering_tables::BackScatteringTables;
 use crate::brute::{self, Directional};
 use crate::brute_multiple::BruteDual;
 use crate::camera::View;
+use crate::cg_lobes::TrtShape;
 use crate::dual_scattering::Dual;
 use crate::exact_half_circle::ExactHalfCircle;
 use crate::fiber_frames::{frame_at, strand_of_points};
 use crate::half_circle::HalfCircle;
+use crate::last_built::LastBuilt;
+use crate::lobe_table::{AzimuthalLobes, LobeTable, trt_shape};
 use crate::progress::{Counter, Progress};
 use crate::raster::{Coverage, EMPTY, rasterize};
 use crate::scene::{Method, Scene, light_to_world};
 use crate::shadow::transmittance;
-use crate::single_scattering::{LocalLight, shade};
+use crate::single_scattering::{LocalLight, ShadingFiber, shade};
 use crate::tables::Tables;
 use cuticle_fiber::Marschner2003;
 use cuticle_fiber::marschner2003::MarschnerParams;
@@ -62,12 +65,16 @@ pub struct Prepared {
     pub strand_of_point: Vec<u32>,
 }
 
-/// The renderer: its tables, built once.
+/// The renderer: its tables, built once, and the lobe table of the last hair parameters.
 #[derive(Clone, Debug)]
 pub struct Renderer {
     pub tables: Arc<Tables>,
     pub half: Arc<HalfCircle>,
     pub table_seconds: f64,
+    /// Rebuilt when η or the caustic parameters change (absorption is one of its axes).
+    lobes: Arc<LastBuilt<(f64, TrtShape), LobeTable>>,
+    /// Rebuilt when any parameter but absorption (one of its axes) changes.
+    back: Arc<LastBuilt<(MarschnerParams, f64), BackScatteringTables>>,
 }
 
 impl Default for Renderer {
@@ -85,7 +92,26 @@ impl Renderer {
             tables,
             half,
             table_seconds: start.elapsed().as_secs_f64(),
+            lobes: Arc::default(),
+            back: Arc::default(),
         }
+    }
+
+    /// The lobe table of `fiber`'s η and caustics.
+    pub fn lobe_table(&self, fiber: &MarschnerParams) -> Arc<LobeTable> {
+        self.lobes.get_or_build((fiber.eta, trt_shape(fiber)), || {
+            LobeTable::build(&self.tables, fiber)
+        })
+    }
+
+    /// The back-scattering tables of `fiber`'s parameters but absorption, and `d_b`.
+    pub fn back_scattering(&self, fiber: &MarschnerParams, d_b: f64) -> Arc<BackScatteringTables> {
+        let key = MarschnerParams {
+            mu_a: DVec3::ZERO,
+            ..*fiber
+        };
+        self.back
+            .get_or_build((key, d_b), || BackScatteringTables::build(fiber, d_b))
     }
 
     /// Stages 2–3.
@@ -143,6 +169,7 @@ impl Renderer {
         let fibers: Vec<MarschnerParams> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
             .collect();
+        let lobe_table = self.lobe_table(&scene.spec.hair.fiber(None));
         let nl = prepared.lights.len();
         let m = scene.spec.quadrature;
         let method = scene.spec.method;
@@ -150,9 +177,8 @@ impl Renderer {
         let back = scene
             .spec
             .multiple
-            .then(|| BackScatteringTables::build(&hair.fiber(None), hair.d_b));
+            .then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
         let dual = back.as_ref().map(|back| Dual {
-            tables: &self.tables,
             half: &self.half,
             back,
             d_b: hair.d_b,
@@ -208,11 +234,19 @@ impl Renderer {
                                 radiance: l.radiance * t as f64,
                                 ..*l
                             }));
-                            let single = shade(&self.tables, fiber, ao.theta, ao.phi, lit, m);
-                            let multiple = dual.as_ref().map_or(DVec3::ZERO, |d| {
-                                d.shade(fiber, ao.theta, ao.phi, local, shadow)
-                            });
-                            single + multiple
+                            let point = SrbfPoint {
+                                tables: &self.tables,
+                                dual: dual.as_ref(),
+                                theta_o: ao.theta,
+                                phi_o: ao.phi,
+                                m,
+                            };
+                            let lobes = lobe_table.for_fiber(&self.tables, fiber);
+                            let fiber = ShadingFiber {
+                                params: fiber,
+                                lobes: &lobes,
+                            };
+                            point.shade(fiber, local, lit, shadow)
                         }
                         Method::Brute => {
                             let model = Marschner2003::new(*fiber).expect("validated parameters");
@@ -303,6 +337,33 @@ impl Renderer {
         let image = self.resolve(prepared, &colours, scene.groom.point_count());
         timings.resolve = start.elapsed().as_secs_f64();
         image
+    }
+}
+
+/// One visible point of the SRBF path, seen at (θ_o, φ_o) in its fiber frame.
+struct SrbfPoint<'a> {
+    tables: &'a Tables,
+    dual: Option<&'a Dual<'a>>,
+    theta_o: f64,
+    phi_o: f64,
+    m: usize,
+}
+
+impl SrbfPoint<'_> {
+    /// Single scattering from the shadowed lights `lit` plus, when enabled, dual scattering
+    /// from the unshadowed `local` ones and their transmittances `shadow`.
+    fn shade<L: AzimuthalLobes>(
+        &self,
+        fiber: ShadingFiber<L>,
+        local: &[LocalLight],
+        lit: &[LocalLight],
+        shadow: &[f32],
+    ) -> DVec3 {
+        let single = shade(self.tables, fiber, self.theta_o, self.phi_o, lit, self.m);
+        let multiple = self.dual.map_or(DVec3::ZERO, |d| {
+            d.shade(fiber, self.theta_o, self.phi_o, local, shadow)
+        });
+        single + multiple
     }
 }
 

@@ -130,7 +130,10 @@ impl SceneSpec {
         if !(1..=64).contains(&self.brute_grid) {
             return bad("brute_grid must lie in 1..=64");
         }
-        if !(8..=4096).contains(&self.shadows.resolution) || !(self.shadows.density >= 0.0) {
+        if !(8..=4096).contains(&self.shadows.resolution)
+            || self.shadows.density.is_nan()
+            || self.shadows.density < 0.0
+        {
             return bad("shadow resolution must lie in 8..=4096 and density be ≥ 0");
         }
         if self.lights == 0 {
