@@ -6,9 +6,13 @@
 //! transmittance T̃_k) is an SRBF in the limit λ → 0: E_k stands for L_j ∫G_j dω, and its
 //! longitudinal and azimuthal windows become deltas at θ_k and φ_k. Per channel, with
 //! δ = φ_o − φ_k, θ_d = (θ_o − θ_k)/2 and (s, σ̄_f²) = forward(T̃_k, averages at θ_k)
-//! ([`crate::forward_scattering`]), the light adds E_k / cos θ_k times
-//! - T̃_k d_b Ā_b ½M_b(θ_k) (cos²θ_k / cos²θ_d) 𝟙(|δ| < π/2)/π, the local term of the direct
-//!   light (eq. 29 without a window: P(λ → 0, δ)/π is Zinke's s_b on the backward half circle);
+//! ([`crate::forward_scattering`]), the light adds E_k times
+//! - T̃_k d_b Ā_b ½M_b(θ_k) (cos²θ_k / cos²θ_d) 𝟙(|δ| < π/2)/(π cos θ_k), the local term of the
+//!   direct light (eq. 29 without a window: P(λ → 0, δ)/π is Zinke's s_b on the backward half
+//!   circle);
+//!
+//! and, divided by the spread's normalisation Z(θ_k, σ̄_f) ([`crate::spread`]; cos θ_k in
+//! Zinke's narrow limit),
 //! - s Σ_p ∫ g^u(θ_i; θ_k, σ̄_f) ½M_p(θ_i) (cos²θ_i / cos²θ_d(θ_i)) 𝒩^G_p(δ, θ_d(θ_i)) dθ_i, the
 //!   global term (eqs. 27–28), with ½M_p the exact Marschner lobe as a density in θ_i (mean
 //!   2α_p − θ_o, deviation 2β_p) and 𝒩^G_p the half-circle average of the exact N_p
@@ -29,6 +33,7 @@ use crate::back_scattering_tables::BackScatteringTables;
 use crate::brute::LocalDirectional;
 use crate::exact_half_circle::ExactHalfCircle;
 use crate::forward_scattering::{Forward, SELF_CROSSINGS, forward};
+use crate::spread::SpreadNormalisation;
 use cuticle_fiber::FiberAngles;
 use cuticle_fiber::marschner2003::MarschnerParams;
 use cuticle_fiber::special::{GaussLegendre, normal_pdf};
@@ -48,6 +53,8 @@ pub struct BruteDual<'a> {
     /// 𝒩^G_p of the fibers' η.
     pub half: &'a ExactHalfCircle,
     pub back: &'a BackScatteringTables,
+    /// Z(θ_k, σ̄_f) of the forward-scattered spreads ([`crate::spread`]).
+    pub spread: &'a SpreadNormalisation,
     pub d_b: f64,
 }
 
@@ -124,7 +131,7 @@ impl BruteDual<'_> {
         let theta_k = light.angles.theta;
         let delta = wrap_pi(ao.phi - light.angles.phi).abs();
         let terms = std::array::from_fn(|c| self.channel(fiber, c, ao.theta, theta_k, delta, t));
-        light.power * DVec3::from_array(terms) / theta_k.cos().max(1e-4)
+        light.power * DVec3::from_array(terms)
     }
 
     /// The forward-scattered share of channel `c` when it is not negligible. Through fewer
@@ -135,7 +142,8 @@ impl BruteDual<'_> {
             .filter(|f| f.scattered > NEGLIGIBLE)
     }
 
-    /// Channel `c`'s three terms, before the factor E_k / cos θ_k.
+    /// Channel `c`'s three terms, before the factor E_k: the direct light's divided by cos θ_k
+    /// (exact for a directional light), the spread ones by Z(θ_k, σ̄_f).
     fn channel(
         &self,
         fiber: &MarschnerParams,
@@ -159,7 +167,7 @@ impl BruteDual<'_> {
         let mut out = 0.0;
         if backward {
             out += t * self.d_b * a.back * back_lobe.density(theta_k) * cos_ratio(theta_o, theta_k)
-                / PI;
+                / (PI * theta_k.cos().max(1e-4));
         }
         if let Some(fw) = scattered {
             let spread = Normal {
@@ -168,13 +176,14 @@ impl BruteDual<'_> {
             };
             let local = self.d_b * a.back * (PI - delta) / (PI * PI)
                 * product_integral(spread, back_lobe, |x| cos_ratio(theta_o, x));
-            out += fw.scattered * (self.global(fiber, c, theta_o, spread, delta) + local);
+            out += fw.scattered * (self.global(fiber, c, theta_o, spread, delta) + local)
+                / self.spread.at(theta_k, spread.deviation);
         }
         out
     }
 
     /// Σ_p ∫ g^u ½M_p (cos²θ_i / cos²θ_d) 𝒩^G_p dθ_i for channel `c` (eq. 27 without s and
-    /// 1/cos θ_k).
+    /// 1/Z).
     fn global(
         &self,
         fiber: &MarschnerParams,
@@ -236,7 +245,8 @@ mod tests {
         let back_lobe = |x: f64| gauss(x, 2.0 * a.back_shift - ao.theta, 2.0 * a.back_width);
         let mut out = 0.0;
         if delta < HALF_PI {
-            out += t * d_b * a.back * back_lobe(light.theta) * ratio(light.theta) / PI;
+            out += t * d_b * a.back * back_lobe(light.theta) * ratio(light.theta)
+                / (PI * light.theta.cos());
         }
         let fw = forward(t, &back.at(light.theta, mu));
         if fw.scattered > 0.0 {
@@ -258,9 +268,10 @@ mod tests {
             });
             let local = d_b * a.back * (PI - delta) / (PI * PI)
                 * fine(|x| gauss(x, light.theta, sf) * back_lobe(x) * ratio(x));
-            out += fw.scattered * (global + local);
+            let norm = fine(|x| gauss(x, light.theta, sf) * x.cos());
+            out += fw.scattered * (global + local) / norm;
         }
-        out / light.theta.cos()
+        out
     }
 
     fn setup(mu_a: [f64; 3]) -> (MarschnerParams, BackScatteringTables, f64) {
@@ -284,9 +295,11 @@ mod tests {
     fn terms_match_a_direct_evaluation_of_their_formulas() {
         let s = setup([0.15, 0.4, 1.2]);
         let half = ExactHalfCircle::build(s.0.eta);
+        let spread = SpreadNormalisation::build();
         let dual = BruteDual {
             half: &half,
             back: &s.1,
+            spread: &spread,
             d_b: s.2,
         };
         let ao = FiberAngles::new(0.2, 0.3);

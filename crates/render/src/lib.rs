@@ -37,6 +37,7 @@ pub mod renderer;
 pub mod scene;
 pub mod shadow;
 pub mod single_scattering;
+pub mod spread;
 pub mod tables;
 pub mod taylor;
 

@@ -21,6 +21,7 @@ use crate::raster::{Coverage, EMPTY, rasterize};
 use crate::scene::{Method, Scene, light_to_world};
 use crate::shadow::transmittance;
 use crate::single_scattering::{LocalLight, ShadingFiber, shade};
+use crate::spread::SpreadNormalisation;
 use crate::tables::Tables;
 use cuticle_fiber::Marschner2003;
 use cuticle_fiber::marschner2003::MarschnerParams;
@@ -70,6 +71,7 @@ pub struct Prepared {
 pub struct Renderer {
     pub tables: Arc<Tables>,
     pub half: Arc<HalfCircle>,
+    pub spread: Arc<SpreadNormalisation>,
     pub table_seconds: f64,
     /// Rebuilt when η or the caustic parameters change (absorption is one of its axes).
     lobes: Arc<LastBuilt<(f64, TrtShape), LobeTable>>,
@@ -88,9 +90,11 @@ impl Renderer {
         let start = Instant::now();
         let tables = Arc::new(Tables::build());
         let half = Arc::new(HalfCircle::build());
+        let spread = Arc::new(SpreadNormalisation::build());
         Self {
             tables,
             half,
+            spread,
             table_seconds: start.elapsed().as_secs_f64(),
             lobes: Arc::default(),
             back: Arc::default(),
@@ -180,6 +184,7 @@ impl Renderer {
             .then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
         let dual = back.as_ref().map(|back| Dual {
             half: &self.half,
+            spread: &self.spread,
             back,
             d_b: hair.d_b,
             m,
@@ -191,6 +196,7 @@ impl Renderer {
             .zip(exact_half.as_ref())
             .map(|(back, half)| BruteDual {
                 half,
+                spread: &self.spread,
                 back,
                 d_b: hair.d_b,
             });

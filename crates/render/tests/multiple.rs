@@ -1,6 +1,7 @@
 //! Dual-scattering multiple scattering end to end, on tiny scenes (each well under a second in
 //! release, the brute force's a few): it adds energy, more for lighter hair, in the SRBF render
-//! and in the brute force; the two agree under a narrow light; it is off when `multiple` is; an
+//! and in the brute force; the two agree under a narrow light and under a wide one at the
+//! fibers' axis; it is off when `multiple` is; an
 //! isolated strand gets no global term.
 
 mod common;
@@ -165,29 +166,20 @@ fn brute_force_multiple_scattering_adds_more_to_lighter_hair() {
     assert!(light > 2.0 * dark, "light gain {light}, dark gain {dark}");
 }
 
-/// Multiple scattering alone, SRBF against brute force, under the key light alone (λ = 0.35,
-/// where the SRBF windows' Gaussian approximations hold) on light hair (σ_a = 0.1) with dense
-/// shadows (density 3, so the global term dominates), the brute force with 6 · 10² lights:
-/// over visible points, relative RMSE below 0.65 (measured 0.46; 0.48 with 6 · 16²) and the
-/// SRBF's total within 30% of the brute force's (measured 19% below). They differ by design in the azimuthal functions (circular-Gaussian fits
-/// against exact), in one σ̄_f for all channels against one each, and in T̃ (the SRBF light's
-/// filtered opacity against each directional light's own), which forward scattering reads.
-/// Under this scene's wide sky light (λ = 1.2, centred on the fibers' axis) the SRBF path's
-/// multiple scattering is several times the brute force's: the SRBF's Gaussian in θ over
-/// cos θ_j does not hold for wide lights near the pole.
-#[test]
-fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
+/// Multiple scattering alone, SRBF against brute force (6 · 10² lights), on light hair
+/// (σ_a = 0.1) with shadows of `density`, under one light: (relative RMSE over visible
+/// points, SRBF total / brute total).
+fn srbf_against_brute_multiple(light: SrbfLight, density: f64) -> (f64, f64) {
     let r = renderer();
-    let key = vec![lights()[0]];
     let mut s = spec(true, 0.1);
-    s.shadows.density = 3.0;
+    s.shadows.density = density;
     let srbf = Scene::from_parts(
         s.clone(),
         groom(400),
         EnvMap::from_fn(64, 32, |_| Vec3::ZERO),
-        key.clone(),
+        vec![light],
     );
-    let brute = brute_scene(s, groom(400), key, 10);
+    let brute = brute_scene(s, groom(400), vec![light], 10);
     let (_, ps, _) = r.render(&srbf);
     let (_, pb, _) = r.render(&brute);
     assert_eq!(ps.points, pb.points);
@@ -195,11 +187,41 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
     let (_, b) = single_and_multiple(r, &brute, &pb, 0.1);
     let num: f64 = a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum();
     let den: f64 = b.iter().map(|y| y * y).sum();
-    let (rmse, ratio) = (
+    (
         (num / den).sqrt(),
         a.iter().sum::<f64>() / b.iter().sum::<f64>(),
+    )
+}
+
+/// Under the key light (λ = 0.35) with dense shadows (density 3, so the global term
+/// dominates), relative RMSE below 0.65 (measured 0.46; 0.48 with 6 · 16²
+/// lights) and the SRBF's total within 30% of the brute force's (measured 19% below). They
+/// differ by design in the azimuthal functions (circular-Gaussian fits against exact), in one
+/// σ̄_f for all channels against one each, and in T̃ (the SRBF light's filtered opacity against
+/// each directional light's own), which forward scattering reads.
+#[test]
+fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
+    let (rmse, ratio) = srbf_against_brute_multiple(lights()[0], 3.0);
+    eprintln!(
+        "key light, multiple scattering alone: relative RMSE {rmse:.4}, SRBF / brute {ratio:.4}"
     );
-    eprintln!("multiple scattering alone: relative RMSE {rmse:.4}, SRBF / brute {ratio:.4}");
     assert!(rmse < 0.65, "relative RMSE {rmse}");
     assert!((ratio - 1.0).abs() < 0.3, "SRBF / brute energy {ratio}");
+}
+
+/// Under the wide sky light (λ = 1.2) centred on the fibers' axis, shadows of density 1: with
+/// seed 004's 1/cos θ_j normalisation of the spread the SRBF's multiple scattering was twice
+/// the brute force's in total and its relative RMSE 2.75; with the exact normalisation
+/// ([`cuticle_render::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total within
+/// 50 % (measured 43 % below; 11 % below at density 0.3, where the RMSE is 0.12: what remains
+/// grows with the depth of hair the forward-scattered light crosses, and comes from T_f and
+/// σ̄_f read at the light's centre, θ_j at the axis, against each directional light's own).
+#[test]
+fn srbf_multiple_scattering_matches_brute_force_under_a_wide_light_at_the_axis() {
+    let (rmse, ratio) = srbf_against_brute_multiple(lights()[1], 1.0);
+    eprintln!(
+        "sky light, multiple scattering alone: relative RMSE {rmse:.4}, SRBF / brute {ratio:.4}"
+    );
+    assert!(rmse < 0.6, "relative RMSE {rmse}");
+    assert!((ratio - 1.0).abs() < 0.5, "SRBF / brute energy {ratio}");
 }
