@@ -123,6 +123,11 @@ pub fn moments(forward: [f64; 3], back: [f64; 3], lobes: [(f64, f64); 3]) -> [f6
     ]
 }
 
+/// The tables' absorption axis, x = ln(1 + σ_a/0.02).
+pub fn absorption_coordinate(sigma_a: f64) -> f64 {
+    (sigma_a.max(0.0) / SIGMA_SCALE).ln_1p()
+}
+
 impl BackScatteringTables {
     /// Builds the tables for the global parameters of `fiber` (its absorption is an axis).
     pub fn build(fiber: &MarschnerParams, d_b: f64) -> Self {
@@ -136,9 +141,12 @@ impl BackScatteringTables {
 
     /// The averages at |θ_d| for one channel's σ_a.
     pub fn at(&self, theta_d: f64, sigma_a: f64) -> Averages {
-        let moments = self
-            .grid
-            .lookup(theta_d.abs(), (sigma_a.max(0.0) / SIGMA_SCALE).ln_1p());
+        self.at_coordinate(theta_d, absorption_coordinate(sigma_a))
+    }
+
+    /// [`Self::at`] from σ_a's [`absorption_coordinate`], which shading computes once a point.
+    pub fn at_coordinate(&self, theta_d: f64, x: f64) -> Averages {
+        let moments = self.grid.lookup(theta_d.abs(), x);
         let [forward, forward_variance, back, back_shift, back_width] =
             averages_from_moments(moments, self.d_b);
         Averages {

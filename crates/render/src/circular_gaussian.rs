@@ -32,6 +32,10 @@ const I0_SWITCH: f64 = 3.75;
 /// path's one exponential (9.8.1 below the switch, 9.8.2 above; relative error of I₀ below
 /// 2e-7).
 fn i0_times_exp(kappa: f64, s: f64) -> f64 {
+    if kappa + s < -745.0 {
+        // e^{κ+s} underflows (and I₀ e^{−κ} ≤ 1): skip exp's slow path.
+        return 0.0;
+    }
     if kappa <= I0_SWITCH {
         i0_small(kappa) * s.exp()
     } else {

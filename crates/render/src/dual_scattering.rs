@@ -26,7 +26,7 @@
 
 use crate::angles::wrap_pi;
 use crate::angles::{Incident, Outgoing};
-use crate::back_scattering_tables::{Averages, BackScatteringTables};
+use crate::back_scattering_tables::{Averages, BackScatteringTables, absorption_coordinate};
 use crate::cg_lobes::r_coefficients;
 use crate::circular_gaussian as cg;
 use crate::forward_scattering::forward;
@@ -53,6 +53,14 @@ pub struct Dual<'a> {
     pub m: usize,
 }
 
+/// What every light of one point shares: its view and its channels' absorption coordinates
+/// in the back-scattering tables.
+struct PointView {
+    outgoing: Outgoing,
+    phi_o: f64,
+    absorption: [f64; 3],
+}
+
 /// ∫ G_j dω of an SRBF exp(κ(ω·ω_j − 1)), κ = 2/λ².
 pub fn srbf_integral(lambda: f64) -> f64 {
     let kappa = 2.0 / (lambda * lambda).max(1e-12);
@@ -70,10 +78,15 @@ impl Dual<'_> {
         lights: &[LocalLight],
         direct: &[f32],
     ) -> DVec3 {
+        let view = PointView {
+            outgoing: Outgoing::new(theta_o),
+            phi_o,
+            absorption: fiber.params.mu_a.to_array().map(absorption_coordinate),
+        };
         lights
             .iter()
             .zip(direct)
-            .map(|(light, &t)| self.light(fiber, theta_o, phi_o, light, t as f64))
+            .map(|(light, &t)| self.light(fiber, &view, light, t as f64))
             .sum()
     }
 
@@ -81,29 +94,25 @@ impl Dual<'_> {
     fn light<L: AzimuthalLobes>(
         &self,
         fiber: ShadingFiber<L>,
-        theta_o: f64,
-        phi_o: f64,
+        view: &PointView,
         light: &LocalLight,
         t: f64,
     ) -> DVec3 {
+        let (outgoing, theta_o) = (view.outgoing, view.outgoing.theta);
         let energy = light.radiance * srbf_integral(light.bandwidth);
         if energy.max_element() <= 0.0 {
             return DVec3::ZERO;
         }
         let cos_j = light.theta.cos().max(1e-4);
-        let delta = wrap_pi(phi_o - light.phi);
-        let fw: [_; 3] =
-            std::array::from_fn(|c| forward(t, &self.back.at(light.theta, fiber.params.mu_a[c])));
+        let delta = wrap_pi(view.phi_o - light.phi);
+        let fw = view
+            .absorption
+            .map(|x| forward(t, &self.back.at_coordinate(light.theta, x)));
         let scattered = DVec3::from_array(fw.map(|f| f.scattered));
         let light_var = srbf_deviation(light.bandwidth).powi(2);
         let direct_azimuth = self.half.share(light.bandwidth / cos_j, delta) / PI;
-        let outgoing = Outgoing::new(theta_o);
         let theta_d = 0.5 * (theta_o - light.theta);
-        let back = fiber
-            .params
-            .mu_a
-            .to_array()
-            .map(|mu| self.back.at(theta_d, mu));
+        let back = view.absorption.map(|x| self.back.at_coordinate(theta_d, x));
         let sigma_light = light_var.sqrt();
         let mut out = if t > 0.0 {
             t * self.d_b * self.local(&back, outgoing, light.theta, sigma_light, direct_azimuth)

@@ -41,8 +41,24 @@ impl<const N: usize> Grid2<N> {
 
     /// Bilinear interpolation at (x, y), clamped to the grid.
     pub fn lookup(&self, x: f64, y: f64) -> [f64; N] {
-        let (i, fx) = cell(self.x0, self.x1, self.nx, x);
-        let (j, fy) = cell(self.y0, self.y1, self.ny, y);
+        self.lookup_cells(self.cell_x(x), self.cell_y(y))
+    }
+
+    /// The cell of `x` along the first axis, for lookups that share it.
+    pub fn cell_x(&self, x: f64) -> Cell {
+        let (index, fraction) = cell(self.x0, self.x1, self.nx, x);
+        Cell { index, fraction }
+    }
+
+    /// The cell of `y` along the second axis, for lookups that share it.
+    pub fn cell_y(&self, y: f64) -> Cell {
+        let (index, fraction) = cell(self.y0, self.y1, self.ny, y);
+        Cell { index, fraction }
+    }
+
+    /// [`Self::lookup`] at cells found before.
+    pub fn lookup_cells(&self, cx: Cell, cy: Cell) -> [f64; N] {
+        let (i, fx, j, fy) = (cx.index, cx.fraction, cy.index, cy.fraction);
         let at = |i: usize, j: usize| &self.values[i * self.ny + j];
         let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
         std::array::from_fn(|k| {
@@ -59,6 +75,13 @@ impl<const N: usize> Grid2<N> {
     pub fn is_empty(&self) -> bool {
         self.values.is_empty()
     }
+}
+
+/// A lower node index along one axis and the fraction of the way to the next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    index: usize,
+    fraction: f64,
 }
 
 fn node(a: f64, b: f64, n: usize, i: usize) -> f64 {

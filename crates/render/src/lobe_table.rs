@@ -5,7 +5,7 @@
 //! quadrature sample. Eccentric fibers add an η̄* axis to the TRT table (seed 004 eq. 26).
 
 use crate::cg_lobes::{Geometry, Lobe, TrtShape, trt_fit, tt_fit};
-use crate::grid::Grid2;
+use crate::grid::{Cell, Grid2};
 use crate::hair::caustic_bandwidth;
 use crate::tables::Tables;
 use cuticle_fiber::marschner2003::MarschnerParams;
@@ -197,7 +197,10 @@ impl LobeTable {
         TabulatedLobes {
             table: self,
             fitted: FittedLobes { tables, fiber },
-            x: fiber.mu_a.to_array().map(absorption_axis),
+            x: fiber
+                .mu_a
+                .to_array()
+                .map(|mu| self.tt.cell_y(absorption_axis(mu))),
             eccentric: fiber.eccentricity != 1.0,
         }
     }
@@ -213,14 +216,15 @@ fn absorption_axis(sigma_a: f64) -> f64 {
 pub struct TabulatedLobes<'a> {
     table: &'a LobeTable,
     fitted: FittedLobes<'a>,
-    /// Each channel's coordinate on the absorption axis.
-    x: [f64; 3],
+    /// Each channel's cell on the absorption axis (both grids share their axes).
+    x: [Cell; 3],
     eccentric: bool,
 }
 
 impl AzimuthalLobes for TabulatedLobes<'_> {
     fn tt(&self, theta_d: f64) -> TtLobes {
-        let v = self.x.map(|x| self.table.tt.lookup(theta_d.abs(), x));
+        let cell = self.table.tt.cell_x(theta_d.abs());
+        let v = self.x.map(|x| self.table.tt.lookup_cells(cell, x));
         TtLobes {
             weight: v.map(|v| v[0]),
             bandwidth: v.map(|v| v[1]),
@@ -231,7 +235,8 @@ impl AzimuthalLobes for TabulatedLobes<'_> {
         if self.eccentric {
             return self.fitted.trt(eta, theta_d);
         }
-        let v = self.x.map(|x| self.table.trt.lookup(theta_d.abs(), x));
+        let cell = self.table.trt.cell_x(theta_d.abs());
+        let v = self.x.map(|x| self.table.trt.lookup_cells(cell, x));
         TrtLobes {
             centre: [v[0][0], -v[0][0], 0.0],
             weight: v.map(|v| [v[1], v[1], v[3]]),

@@ -52,7 +52,9 @@ impl Window {
     /// The window's erfc and exponential at `x`, which the two segments meeting there share.
     fn edge(&self, x: f64) -> Edge {
         let u = (x - self.mu) / (SQRT_2 * self.sigma);
-        let gauss = (-u * u).exp();
+        // Beyond |u| = 27 both vanish in f64; skipping exp's slow underflow path there matters
+        // because the ends ±π/2 of a narrow window usually lie that far out.
+        let gauss = if u * u < 729.0 { (-u * u).exp() } else { 0.0 };
         Edge {
             x,
             u,
@@ -72,33 +74,26 @@ impl Window {
     /// The m + 1 sample points of §4.2.2 over [−π/2, π/2]: the ends, and m − 1 points spread
     /// uniformly over μ ± (m − 2)λ/2 clipped to the interval (clipping the span rather than
     /// each point keeps all m − 1 inside when the window is wide).
-    pub fn nodes(&self, m: usize, out: &mut [f64; MAX_SEGMENTS + 1]) {
+    pub fn nodes(&self, m: usize) -> Nodes {
         let m = m.clamp(2, MAX_SEGMENTS);
         let half = (m - 2) as f64 * 0.5 * self.bandwidth();
-        let lo = (self.mu - half).clamp(-FRAC_PI_2, FRAC_PI_2);
-        let hi = (self.mu + half).clamp(-FRAC_PI_2, FRAC_PI_2);
-        out[0] = -FRAC_PI_2;
-        out[m] = FRAC_PI_2;
-        for (s, node) in out.iter_mut().enumerate().take(m).skip(1) {
-            *node = if m == 2 {
-                lo
-            } else {
-                lo + (hi - lo) * (s - 1) as f64 / (m - 2) as f64
-            };
+        Nodes {
+            m,
+            lo: (self.mu - half).clamp(-FRAC_PI_2, FRAC_PI_2),
+            hi: (self.mu + half).clamp(-FRAC_PI_2, FRAC_PI_2),
         }
     }
 
     /// ∫_{−π/2}^{π/2} window · f with f piecewise linear through m + 1 samples. `f` is not
     /// called at the ends ±π/2, where every integrand of the renderer vanishes (cos²θ_i).
     pub fn integrate(&self, m: usize, mut f: impl FnMut(f64) -> DVec3) -> DVec3 {
-        let m = m.clamp(2, MAX_SEGMENTS);
-        let mut x = [0.0; MAX_SEGMENTS + 1];
-        self.nodes(m, &mut x);
-        let mut left = self.edge(x[0]);
+        let nodes = self.nodes(m);
+        let mut left = self.edge(nodes.at(0));
         let mut prev = DVec3::ZERO;
         let mut sum = DVec3::ZERO;
-        for (s, &xs) in x.iter().enumerate().take(m + 1).skip(1) {
-            let value = if s == m { DVec3::ZERO } else { f(xs) };
+        for s in 1..=nodes.m {
+            let xs = nodes.at(s);
+            let value = if s == nodes.m { DVec3::ZERO } else { f(xs) };
             let right = self.edge(xs);
             if right.x > left.x {
                 sum += self.segment(&left, &right, prev, value);
@@ -106,6 +101,27 @@ impl Window {
             (left, prev) = (right, value);
         }
         sum
+    }
+}
+
+/// The nodes of [`Window::nodes`], computed on demand.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Nodes {
+    /// Segments.
+    pub m: usize,
+    lo: f64,
+    hi: f64,
+}
+
+impl Nodes {
+    /// Node `s` of 0..=m.
+    pub fn at(&self, s: usize) -> f64 {
+        match s {
+            0 => -FRAC_PI_2,
+            s if s >= self.m => FRAC_PI_2,
+            _ if self.m == 2 => self.lo,
+            s => self.lo + (self.hi - self.lo) * (s - 1) as f64 / (self.m - 2) as f64,
+        }
     }
 }
 
