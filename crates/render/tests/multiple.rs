@@ -1,8 +1,7 @@
 //! Dual-scattering multiple scattering end to end, on tiny scenes (each well under a second in
 //! release, the brute force's a few): it adds energy, more for lighter hair, in the SRBF render
 //! and in the brute force; the two agree under a narrow light and under a wide one at the
-//! fibers' axis; it is off when `multiple` is; an
-//! isolated strand gets no global term.
+//! fibers' axis; it is off when `multiple` is; an isolated strand gets no global term.
 
 mod common;
 
