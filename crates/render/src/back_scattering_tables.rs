@@ -18,6 +18,7 @@
 //! rebuild; entries are the smooth moments [ā_f, ā_b, α_f, α_b, β_f², β_b²], and the three
 //! combinations above are formed after interpolation.
 
+use crate::absorption_axis;
 use crate::angles::{HALF_PI, deflection, eta_prime, wrap_pi};
 use crate::exact_azimuthal::attenuation;
 use crate::grid::Grid2;
@@ -25,12 +26,8 @@ use cuticle_fiber::marschner2003::MarschnerParams;
 
 /// Largest θ_d tabulated.
 const THETA_MAX: f64 = 1.5;
-/// Largest σ_a tabulated (the parameters' validated range).
-const SIGMA_MAX: f64 = 1000.0;
 /// Nodes along each axis.
 const NODES: usize = 64;
-/// The absorption axis is ln(1 + σ_a/SIGMA_SCALE), fine where ā_f is near 1.
-const SIGMA_SCALE: f64 = 0.02;
 /// Midpoint samples in h per mode.
 const H_SAMPLES: usize = 128;
 /// Keeps 1 − ā_f² away from zero (ā_f → 1 only for a lossless, purely forward fiber).
@@ -123,28 +120,24 @@ pub fn moments(forward: [f64; 3], back: [f64; 3], lobes: [(f64, f64); 3]) -> [f6
     ]
 }
 
-/// The tables' absorption axis, x = ln(1 + σ_a/0.02).
-pub fn absorption_coordinate(sigma_a: f64) -> f64 {
-    (sigma_a.max(0.0) / SIGMA_SCALE).ln_1p()
-}
-
 impl BackScatteringTables {
     /// Builds the tables for the global parameters of `fiber` (its absorption is an axis).
     pub fn build(fiber: &MarschnerParams, d_b: f64) -> Self {
         let grid = Grid2::build(
             (NODES, 0.0, THETA_MAX),
-            (NODES, 0.0, (SIGMA_MAX / SIGMA_SCALE).ln_1p()),
-            |theta_d, x| entry(fiber, theta_d, SIGMA_SCALE * x.exp_m1()),
+            (NODES, 0.0, absorption_axis::max_coordinate()),
+            |theta_d, x| entry(fiber, theta_d, absorption_axis::sigma(x)),
         );
         Self { grid, d_b }
     }
 
     /// The averages at |θ_d| for one channel's σ_a.
     pub fn at(&self, theta_d: f64, sigma_a: f64) -> Averages {
-        self.at_coordinate(theta_d, absorption_coordinate(sigma_a))
+        self.at_coordinate(theta_d, absorption_axis::coordinate(sigma_a))
     }
 
-    /// [`Self::at`] from σ_a's [`absorption_coordinate`], which shading computes once a point.
+    /// [`Self::at`] from σ_a's [`absorption_axis::coordinate`], which shading computes once a
+    /// point.
     pub fn at_coordinate(&self, theta_d: f64, x: f64) -> Averages {
         let moments = self.grid.lookup(theta_d.abs(), x);
         let [forward, forward_variance, back, back_shift, back_width] =

@@ -24,9 +24,10 @@
 //! circular fibers). Channels share one σ_f, the mean of theirs weighted by their scattered
 //! shares.
 
+use crate::absorption_axis;
 use crate::angles::wrap_pi;
 use crate::angles::{Incident, Outgoing};
-use crate::back_scattering_tables::{Averages, BackScatteringTables, absorption_coordinate};
+use crate::back_scattering_tables::{Averages, BackScatteringTables};
 use crate::cg_lobes::r_coefficients;
 use crate::circular_gaussian as cg;
 use crate::forward_scattering::forward;
@@ -81,7 +82,11 @@ impl Dual<'_> {
         let view = PointView {
             outgoing: Outgoing::new(theta_o),
             phi_o,
-            absorption: fiber.params.mu_a.to_array().map(absorption_coordinate),
+            absorption: fiber
+                .params
+                .mu_a
+                .to_array()
+                .map(absorption_axis::coordinate),
         };
         lights
             .iter()

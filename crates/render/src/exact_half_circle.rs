@@ -11,6 +11,7 @@
 //! in the back-scattering tables) over θ_d ∈ [0, 1.5] (48 nodes), x = ln(1 + σ_a/0.02) for
 //! σ_a ∈ [0, 1000] (64) and |δ| ∈ [0, π] (49), and read by trilinear interpolation.
 
+use crate::absorption_axis;
 use crate::angles::{HALF_PI, deflection, eta_prime, sigma_prime, wrap_pi};
 use crate::exact_azimuthal::{attenuation, transmittance};
 use rayon::prelude::*;
@@ -18,10 +19,6 @@ use std::f64::consts::PI;
 
 /// Largest θ_d tabulated.
 const THETA_MAX: f64 = 1.5;
-/// Largest σ_a tabulated (the parameters' validated range).
-const SIGMA_MAX: f64 = 1000.0;
-/// The absorption axis is ln(1 + σ_a/SIGMA_SCALE).
-const SIGMA_SCALE: f64 = 0.02;
 const THETA_NODES: usize = 48;
 const SIGMA_NODES: usize = 64;
 const DELTA_NODES: usize = 49;
@@ -64,7 +61,7 @@ fn theta_row(eta: f64, theta_d: f64) -> Vec<f64> {
     let sigmas: Vec<f64> = (0..SIGMA_NODES)
         .map(|i| {
             sigma_prime(
-                sigma_of(node(sigma_axis_max(), SIGMA_NODES, i)),
+                absorption_axis::sigma(node(absorption_axis::max_coordinate(), SIGMA_NODES, i)),
                 eta,
                 theta_d,
             )
@@ -125,18 +122,6 @@ fn cell(max: f64, n: usize, x: f64) -> (usize, f64) {
     (i, t - i as f64)
 }
 
-fn sigma_axis(sigma_a: f64) -> f64 {
-    (sigma_a.max(0.0) / SIGMA_SCALE).ln_1p()
-}
-
-fn sigma_of(x: f64) -> f64 {
-    SIGMA_SCALE * x.exp_m1()
-}
-
-fn sigma_axis_max() -> f64 {
-    sigma_axis(SIGMA_MAX)
-}
-
 impl ExactHalfCircle {
     /// Tabulates 𝒩^G_R, 𝒩^G_TT, 𝒩^G_TRT for index of refraction `eta`.
     pub fn build(eta: f64) -> Self {
@@ -157,7 +142,11 @@ impl ExactHalfCircle {
 
     /// The lookup column of one channel's σ_a and the azimuth δ = φ_o − φ_light.
     pub fn column(sigma_a: f64, delta: f64) -> Column {
-        let (i, fx) = cell(sigma_axis_max(), SIGMA_NODES, sigma_axis(sigma_a));
+        let (i, fx) = cell(
+            absorption_axis::max_coordinate(),
+            SIGMA_NODES,
+            absorption_axis::coordinate(sigma_a),
+        );
         let (j, fy) = cell(PI, DELTA_NODES, wrap_pi(delta).abs());
         let at = |i: usize, j: usize| i * DELTA_NODES + j;
         Column {
@@ -240,7 +229,8 @@ mod tests {
         let table = ExactHalfCircle::build(1.55);
         for &(i, k, j) in &[(10, 20, 7), (33, 5, 40), (2, 50, 24)] {
             let theta_d = node(THETA_MAX, THETA_NODES, i);
-            let sigma_a = sigma_of(node(sigma_axis_max(), SIGMA_NODES, k));
+            let sigma_a =
+                absorption_axis::sigma(node(absorption_axis::max_coordinate(), SIGMA_NODES, k));
             let delta = node(PI, DELTA_NODES, j);
             let column = ExactHalfCircle::column(sigma_a, delta);
             for p in 0..3 {

@@ -11,6 +11,7 @@
 //! of θ_i is the unit normal density of mean 2α_p − θ_o and deviation 2β_p (seed 004 eq. 7).
 //! Pixels hold L_o times coverage plus the background for the rest.
 
+pub mod absorption_axis;
 pub mod angles;
 pub mod back_scattering_tables;
 pub mod bench;

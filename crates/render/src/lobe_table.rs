@@ -4,6 +4,7 @@
 //! shading interpolates the fits of [`crate::cg_lobes`] instead of redoing them at every
 //! quadrature sample. Eccentric fibers add an η̄* axis to the TRT table (seed 004 eq. 26).
 
+use crate::absorption_axis;
 use crate::cg_lobes::{Geometry, Lobe, TrtShape, trt_fit, tt_fit};
 use crate::grid::{Cell, Grid2};
 use crate::hair::caustic_bandwidth;
@@ -123,12 +124,8 @@ impl AzimuthalLobes for FittedLobes<'_> {
 const THETA_D_NODES: usize = 512;
 /// Largest |θ_d| tabulated; cos θ_d is then 0.01 and the integrand's cos²θ_i nearly zero.
 const THETA_D_MAX: f64 = 1.56;
-/// Nodes over the absorption axis x = ln(1 + σ_a/SIGMA_SCALE), σ_a ∈ [0, SIGMA_MAX].
+/// Nodes over the [`absorption_axis`].
 const SIGMA_NODES: usize = 256;
-/// Largest σ_a tabulated (the parameters' validated range).
-const SIGMA_MAX: f64 = 1000.0;
-/// The absorption axis is logarithmic beyond this σ_a and linear below.
-const SIGMA_SCALE: f64 = 0.02;
 
 /// The lobes of one colour channel, fitted at every node of (|θ_d|, ln(1 + σ_a/0.02)) for a
 /// fiber's η and TRT shape: per-strand absorption (every strand of a preset groom differs) and
@@ -154,9 +151,9 @@ impl LobeTable {
         let eta = fiber.eta;
         let axes = (
             (THETA_D_NODES, 0.0, THETA_D_MAX),
-            (SIGMA_NODES, 0.0, absorption_axis(SIGMA_MAX)),
+            (SIGMA_NODES, 0.0, absorption_axis::max_coordinate()),
         );
-        let fit = |td: f64, x: f64| (Geometry::new(tables, eta, td), SIGMA_SCALE * x.exp_m1());
+        let fit = |td: f64, x: f64| (Geometry::new(tables, eta, td), absorption_axis::sigma(x));
         let tt = Grid2::build(axes.0, axes.1, |td, x| {
             let (g, sigma_a) = fit(td, x);
             let tt = tt_fit(&g, sigma_a);
@@ -200,15 +197,10 @@ impl LobeTable {
             x: fiber
                 .mu_a
                 .to_array()
-                .map(|mu| self.tt.cell_y(absorption_axis(mu))),
+                .map(|mu| self.tt.cell_y(absorption_axis::coordinate(mu))),
             eccentric: fiber.eccentricity != 1.0,
         }
     }
-}
-
-/// x = ln(1 + σ_a/SIGMA_SCALE).
-fn absorption_axis(sigma_a: f64) -> f64 {
-    (sigma_a.max(0.0) / SIGMA_SCALE).ln_1p()
 }
 
 /// A [`LobeTable`] read for one fiber's three absorptions.
