@@ -22,10 +22,9 @@
 //! Ā_b, Δ̄_b, σ̄_b are taken at the θ_d of the light's centre, (θ_o − θ_j)/2 (eqs. 29–31 as
 //! printed, Ā_b at each quadrature node and Δ̃_b, σ̃_b averaged over θ_j ± σ, were tried: the
 //! agreement with the brute force in tests/multiple.rs moved by under 2 % and shading took 24 %
-//! longer); all outer integrals
-//! use the linear quadrature of §4.2.2. Eccentricity is ignored here (Zinke's model is for
-//! circular fibers). Channels share one σ_f, the mean of theirs weighted by their scattered
-//! shares.
+//! longer); all outer integrals use the linear quadrature of §4.2.2. Eccentricity is ignored
+//! here (Zinke's model is for circular fibers). Channels share one σ_f, the mean of theirs
+//! weighted by their scattered shares.
 
 use crate::absorption_axis;
 use crate::angles::wrap_pi;
