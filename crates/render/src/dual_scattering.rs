@@ -36,6 +36,7 @@ use crate::forward_scattering::forward;
 use crate::half_circle::HalfCircle;
 use crate::lobe_table::AzimuthalLobes;
 use crate::quadrature::Window;
+use crate::shadow::ShadowOptions;
 use crate::single_scattering::{LocalLight, ShadingFiber};
 use crate::spread::SpreadNormalisation;
 use glam::DVec3;
@@ -50,6 +51,8 @@ pub struct Dual<'a> {
     pub half: &'a HalfCircle,
     /// Z(θ_j, σ) of each spread (the narrow limit cos θ_j overstates wide lights at the axis).
     pub spread: &'a SpreadNormalisation,
+    /// Decides whether the direct light's local term is worth computing.
+    pub shadows: ShadowOptions,
     pub back: &'a BackScatteringTables,
     pub d_b: f64,
     /// Segments m of the linear quadrature.
@@ -121,7 +124,7 @@ impl Dual<'_> {
         let theta_d = 0.5 * (theta_o - light.theta);
         let back = view.absorption.map(|x| self.back.at_coordinate(theta_d, x));
         let sigma_light = light_var.sqrt();
-        let mut out = if t > 0.0 {
+        let mut out = if self.shadows.passes(t) {
             t * self.d_b * self.local(&back, outgoing, light.theta, sigma_light, direct_azimuth)
                 / self.spread.at(light.theta, sigma_light)
         } else {

@@ -175,6 +175,7 @@ impl Renderer {
             .collect();
         let lobe_table = self.lobe_table(&scene.spec.hair.fiber(None));
         let nl = prepared.lights.len();
+        let shadows = scene.spec.shadows;
         let m = scene.spec.quadrature;
         let method = scene.spec.method;
         let hair = &scene.spec.hair;
@@ -185,6 +186,7 @@ impl Renderer {
         let dual = back.as_ref().map(|back| Dual {
             half: &self.half,
             spread: &self.spread,
+            shadows: scene.spec.shadows,
             back,
             d_b: hair.d_b,
             m,
@@ -236,9 +238,16 @@ impl Renderer {
                                 }
                             }));
                             lit.clear();
-                            lit.extend(local.iter().zip(shadow).map(|(l, &t)| LocalLight {
-                                radiance: l.radiance * t as f64,
-                                ..*l
+                            lit.extend(local.iter().zip(shadow).map(|(l, &t)| {
+                                let t = t as f64;
+                                LocalLight {
+                                    radiance: if shadows.passes(t) {
+                                        l.radiance * t
+                                    } else {
+                                        DVec3::ZERO
+                                    },
+                                    ..*l
+                                }
                             }));
                             let point = SrbfPoint {
                                 tables: &self.tables,

@@ -136,6 +136,9 @@ impl SceneSpec {
         {
             return bad("shadow resolution must lie in 8..=4096 and density be ≥ 0");
         }
+        if !(0.0..=0.01).contains(&self.shadows.cutoff) {
+            return bad("shadow cutoff must lie in [0, 0.01]");
+        }
         if self.lights == 0 {
             return bad("lights must be at least 1");
         }

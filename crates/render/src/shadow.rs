@@ -23,6 +23,11 @@ pub struct ShadowOptions {
     pub resolution: usize,
     /// Multiplies the optical depth (1: physical; 0: no shadows).
     pub density: f64,
+    /// Transmittance T̃ below which a light's direct contribution (single scattering, and dual
+    /// scattering's local term of the direct light) is skipped: each skipped light gives less
+    /// than this fraction of what it gives an unshadowed point. 0 skips nothing. A quarter of
+    /// the default scene's (point, light) pairs lie deep enough to fall below 1e-4.
+    pub cutoff: f64,
 }
 
 impl Default for ShadowOptions {
@@ -30,7 +35,15 @@ impl Default for ShadowOptions {
         Self {
             resolution: 256,
             density: 1.0,
+            cutoff: 1e-4,
         }
+    }
+}
+
+impl ShadowOptions {
+    /// Whether a light of transmittance `t` adds direct light.
+    pub fn passes(&self, t: f64) -> bool {
+        t > 0.0 && t >= self.cutoff
     }
 }
 

@@ -29,6 +29,7 @@ fn spec(multiple: bool, mu_a: f64) -> SceneSpec {
         shadows: ShadowOptions {
             resolution: 64,
             density: 1.0,
+            ..ShadowOptions::default()
         },
         ..SceneSpec::default()
     };
