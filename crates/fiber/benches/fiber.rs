@@ -19,7 +19,7 @@ fn directions(n: usize) -> Vec<(FiberAngles, FiberAngles, [f64; 4])> {
     (0..n)
         .map(|_| {
             let wi = FiberAngles::new((next() - 0.5) * 2.8, 0.0);
-            let wo = FiberAngles::new((next() - 0.5) * 2.8, (next() - 0.5) * 6.28);
+            let wo = FiberAngles::new((next() - 0.5) * 2.8, (next() - 0.5) * std::f64::consts::TAU);
             (wi, wo, [next(), next(), next(), next()])
         })
         .collect()

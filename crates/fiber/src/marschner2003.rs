@@ -138,7 +138,6 @@ pub enum MarschnerError {
 const MAX_ALPHA_R: f64 = crate::params::MAX_ALPHA_DEG.to_radians();
 
 impl MarschnerParams {
-    /// Checks every field, returning the first fault.
     /// (α_p, β_p) of M_R, M_TT, M_TRT from α_R, β_R (Marschner 2003 Table 1: α_TT = −α_R/2,
     /// α_TRT = −3α_R/2, β_TT = β_R/2, β_TRT = 2β_R).
     pub fn longitudinal(&self) -> [(f64, f64); 3] {
@@ -146,6 +145,7 @@ impl MarschnerParams {
         [(a, b), (-0.5 * a, 0.5 * b), (-1.5 * a, 2.0 * b)]
     }
 
+    /// Checks every field, returning the first fault.
     pub fn validate(&self) -> Result<(), MarschnerError> {
         self.check_finite()?;
         self.check_fiber()?;

@@ -312,8 +312,8 @@ mod tests {
     fn tt_width_is_the_first_order_spread_of_the_exit_angle() {
         let (beta, eta) = (0.05, 1.55);
         let e = 1e-6;
-        for &(theta_d, h) in &[(0.0, 0.0), (0.4, 0.5), (-0.9, -0.3), (1.2, 0.8)] {
-            let incident = ((theta_d as f64).sin(), h * (theta_d as f64).cos());
+        for &(theta_d, h) in &[(0.0f64, 0.0f64), (0.4, 0.5), (-0.9, -0.3), (1.2, 0.8)] {
+            let incident = (theta_d.sin(), h * theta_d.cos());
             let dx = |k: usize| {
                 let mut plus = [0.0; 2];
                 let mut minus = [0.0; 2];
@@ -322,7 +322,7 @@ mod tests {
                 (nusselt::exit_tt(plus, eta, incident) - nusselt::exit_tt(minus, eta, incident))
                     / (2.0 * e)
             };
-            let spread = beta / 2f64.sqrt() * dx(0).hypot(dx(1)) / (theta_d as f64).cos();
+            let spread = beta / 2f64.sqrt() * dx(0).hypot(dx(1)) / theta_d.cos();
             let width = variance_tt(beta, eta, theta_d, h).sqrt();
             assert!(
                 (spread - width).abs() < 1e-6 * width.max(1e-3),

@@ -259,24 +259,6 @@ fn ln_gamma(a: f64) -> f64 {
     0.5 * (2.0 * PI).ln() + (a + 0.5) * t.ln() - t + series.ln()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn chi2_survival_matches_closed_forms() {
-        // Two degrees of freedom: P(X ≥ x) = e^{−x/2}.
-        for &x in &[0.1, 1.0, 5.0, 40.0] {
-            assert!((chi2_survival(x, 2.0) - (-0.5 * x).exp()).abs() < 1e-13);
-        }
-        // ln Γ at integers and a half.
-        assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-13);
-        assert!((ln_gamma(0.5) - PI.sqrt().ln()).abs() < 1e-13);
-        // The median of χ² with 1000 degrees of freedom is about 999.33.
-        assert!((chi2_survival(999.3333, 1000.0) - 0.5).abs() < 1e-3);
-    }
-}
-
 /// The gap between a sampler and the density its `pdf` reports: the total-variation distance
 /// ½ Σ |observed − expected| over a (θ, φ) histogram of `samples` draws (probabilities per
 /// bin), with the draws' mean fixed-point iteration count.
@@ -325,5 +307,23 @@ pub(crate) fn sampling_gap(
         total_variation,
         mean_iterations: iterations as f64 / n,
         noise_floor,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chi2_survival_matches_closed_forms() {
+        // Two degrees of freedom: P(X ≥ x) = e^{−x/2}.
+        for &x in &[0.1, 1.0, 5.0, 40.0] {
+            assert!((chi2_survival(x, 2.0) - (-0.5 * x).exp()).abs() < 1e-13);
+        }
+        // ln Γ at integers and a half.
+        assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-13);
+        assert!((ln_gamma(0.5) - PI.sqrt().ln()).abs() < 1e-13);
+        // The median of χ² with 1000 degrees of freedom is about 999.33.
+        assert!((chi2_survival(999.3333, 1000.0) - 0.5).abs() < 1e-3);
     }
 }

@@ -30,7 +30,7 @@ fn ray_trace(theta_i: f64, eta: f64, mu_a: f64, rays: usize) -> [[f64; BINS]; LO
         deposit(&mut bins[0], reflect(dir, normal), weight * f, theta_i);
         weight *= 1.0 - f;
         dir = refract(dir, normal, 1.0 / eta);
-        for p in 1..LOBES {
+        for bin in bins.iter_mut().skip(1) {
             let next = exit_point(pos, dir);
             weight *= (-mu_a * (next - pos).length()).exp();
             pos = next;
@@ -38,7 +38,7 @@ fn ray_trace(theta_i: f64, eta: f64, mu_a: f64, rays: usize) -> [[f64; BINS]; LO
             let f = fresnel_dielectric(dir.dot(outward), 1.0 / eta);
             if f < 1.0 {
                 deposit(
-                    &mut bins[p],
+                    bin,
                     refract(dir, -outward, eta),
                     weight * (1.0 - f),
                     theta_i,
@@ -127,19 +127,19 @@ fn deon2011_matches_an_exact_ray_trace_in_the_smooth_limit() {
     for theta_i in [0.0, 0.6, 1.1] {
         let traced = ray_trace(theta_i, eta, mu_a, 400_000);
         let az = AzimuthalScattering::new(eta, beta, DVec3::splat(mu_a));
-        for p in 0..LOBES {
+        for (p, trace) in traced.iter().enumerate() {
             let model = model_bins(&az, p, theta_i);
-            let (e_trace, e_model): (f64, f64) = (traced[p].iter().sum(), model.iter().sum());
+            let (e_trace, e_model): (f64, f64) = (trace.iter().sum(), model.iter().sum());
             assert!(
                 (e_model - e_trace).abs() < 0.02 * e_trace,
                 "θ_i {theta_i} p {p}: energy {e_model} vs {e_trace}"
             );
-            let peak = traced[p].iter().cloned().fold(0.0, f64::max);
+            let peak = trace.iter().cloned().fold(0.0, f64::max);
             for b in 0..BINS {
-                if p == 2 && near_trt_caustic(b, theta_i, eta) || traced[p][b] < 0.05 * peak {
+                if p == 2 && near_trt_caustic(b, theta_i, eta) || trace[b] < 0.05 * peak {
                     continue;
                 }
-                let (t, m) = (traced[p][b], model[b]);
+                let (t, m) = (trace[b], model[b]);
                 assert!(
                     (m - t).abs() < 0.02 * t,
                     "θ_i {theta_i} p {p} bin {b}: model {m} vs trace {t}"

@@ -50,7 +50,7 @@ pub fn run(args: Args) -> Result<()> {
             args.theta_i
         );
     }
-    if !(8..=4000).contains(&args.width) || args.width % 4 != 0 {
+    if !(8..=4000).contains(&args.width) || !args.width.is_multiple_of(4) {
         bail!(
             "--width must be a multiple of 4 between 8 and 4000, got {}",
             args.width
