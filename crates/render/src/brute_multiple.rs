@@ -24,7 +24,7 @@
 //! them, and ½M_b the normal density of mean 2Δ̄_b − θ_o and deviation 2σ̄_b. Each θ_i integral
 //! is a product of two normal densities (a normal density again, in closed form) times a smooth
 //! factor, by 8-point Gauss–Legendre over the product's mean ± 4 deviations within
-//! [−π/2, π/2] (within 0.3% of a fine rule over 2000 random windows of the renderer's kind).
+//! [−π/2, π/2] (within 0.4 % of a fine rule in the tests, on narrow, wide and clipped windows).
 //! Unlike the SRBF path, each channel keeps its own σ̄_f. Fibers are circular, as in Zinke's
 //! model and the SRBF path.
 
@@ -323,10 +323,14 @@ mod tests {
                     got[c]
                 );
             }
+            // Where T̃ is small the forward-scattered terms add light beyond the direct local
+            // term; behind the viewer (cases 2, 3: |δ| > π/2) they are all there is.
             if k > 0 {
                 let direct_only = t * dual.light(&s.0, ao, &local, 1.0).x;
+                let behind = wrap_pi(ao.phi - light.phi).abs() > HALF_PI;
+                assert_eq!(behind, direct_only == 0.0, "case {k}");
                 assert!(
-                    got.x > 1.01 * direct_only,
+                    got.x > 1.01 * direct_only && got.x > 0.0,
                     "case {k}: {got} vs {direct_only}"
                 );
             }

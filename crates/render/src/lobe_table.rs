@@ -282,10 +282,10 @@ mod tests {
     /// The table against the fits it interpolates, as shading sees them (convolved with a
     /// light), over θ_d in steps that fall between nodes, absorptions between nodes from
     /// blond to black, lights narrow and wide, and through the merge of the TRT glints at
-    /// η′ = 2 (θ_d ≈ 0.9 at η = 1.55), relative to the largest response of each sweep: within
-    /// 0.2 % for blond to brown channels (measured 0.09 %), 1 % for black ones (measured
-    /// 0.72 %: between absorption nodes e^{−2σ′} is far from linear, and these responses are
-    /// 1e-4 of the blond ones).
+    /// η′ = 2 (θ_d ≈ 0.9 at η = 1.55), relative to the largest response of each sweep (all
+    /// three channels): within 0.2 % for a blond-to-brown fiber (measured 0.09 %), 1 % for a
+    /// black one (measured 0.72 %: between absorption nodes e^{−2σ′} is far from linear, and
+    /// its responses are 1e-4 of the blond ones).
     #[test]
     fn table_matches_the_fits_it_interpolates() {
         let fiber = MarschnerParams::default();
@@ -315,10 +315,6 @@ mod tests {
                 assert!(
                     worst <= bound * largest,
                     "μ_a {mu_a}, light {light:?}: {worst} of {largest}"
-                );
-                let _ = (
-                    worst <= 5e-3 * largest,
-                    "μ_a {mu_a}, light {light:?}: {worst} of {largest}",
                 );
             }
         }

@@ -1,7 +1,8 @@
 //! Dual-scattering multiple scattering end to end, on tiny scenes (each well under a second in
 //! release, the brute force's a few): it adds energy, more for lighter hair, in the SRBF render
-//! and in the brute force; the two agree under a narrow light and under a wide one at the
-//! fibers' axis; it is off when `multiple` is; an isolated strand gets no global term.
+//! and in the brute force; the two stay within stated bands of each other under a narrow light
+//! and under a wide one at the fibers' axis; it is off when `multiple` is; an isolated strand
+//! gets no global term.
 
 mod common;
 
@@ -194,8 +195,8 @@ fn srbf_against_brute_multiple(light: SrbfLight, density: f64) -> (f64, f64) {
 }
 
 /// Under the key light (λ = 0.35) with dense shadows (density 3, so the global term
-/// dominates), relative RMSE below 0.65 (measured 0.46; 0.48 with 6 · 16²
-/// lights) and the SRBF's total within 30% of the brute force's (measured 19% below). They
+/// dominates), relative RMSE below 0.65 (measured 0.47) and the SRBF's total within 30 % of
+/// the brute force's (measured 17 % below). They
 /// differ by design in the azimuthal functions (circular-Gaussian fits against exact), in one
 /// σ̄_f for all channels against one each, and in T̃ (the SRBF light's filtered opacity against
 /// each directional light's own), which forward scattering reads.
@@ -212,10 +213,12 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
 /// Under the wide sky light (λ = 1.2) centred on the fibers' axis, shadows of density 1: with
 /// seed 004's 1/cos θ_j normalisation of the spread the SRBF's multiple scattering was twice
 /// the brute force's in total and its relative RMSE 2.75; with the exact normalisation
-/// ([`cuticle_render::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total within
-/// 50 % (measured 43 % below; 11 % below at density 0.3, where the RMSE is 0.12: what remains
-/// grows with the depth of hair the forward-scattered light crosses, and comes from T_f and
-/// σ̄_f read at the light's centre, θ_j at the axis, against each directional light's own).
+/// ([`cuticle_render::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total between
+/// 0.45 and 0.75 of the brute force's (measured 0.57; 0.89 at density 0.3, where the RMSE is
+/// 0.12). What remains grows with shadow density; reading T_f at θ_j clamped to ±1 and eqs.
+/// 29–31 as printed each changed it by under 2 %. A likely cause, not yet measured: the SRBF's
+/// T̃ is the transmittance of the light's mean optical depth, which exceeds the mean
+/// transmittance over the directions it spans, leaving forward scattering less.
 #[test]
 fn srbf_multiple_scattering_matches_brute_force_under_a_wide_light_at_the_axis() {
     let (rmse, ratio) = srbf_against_brute_multiple(lights()[1], 1.0);
@@ -223,5 +226,5 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_wide_light_at_the_axis()
         "sky light, multiple scattering alone: relative RMSE {rmse:.4}, SRBF / brute {ratio:.4}"
     );
     assert!(rmse < 0.6, "relative RMSE {rmse}");
-    assert!((ratio - 1.0).abs() < 0.5, "SRBF / brute energy {ratio}");
+    assert!((0.45..0.75).contains(&ratio), "SRBF / brute energy {ratio}");
 }

@@ -187,8 +187,8 @@ fn degenerate_input_renders() {
 }
 
 /// The SRBF render against the brute force with dual scattering on both, shadows on (forward
-/// scattering needs occluders): relative RMSE over hair pixels below 0.11 (measured 0.083;
-/// 0.086 for single scattering under the same shadows). Multiple scattering is a small part of
+/// scattering needs occluders): relative RMSE over hair pixels below 0.11 (measured 0.086).
+/// Multiple scattering is a small part of
 /// this scene's light: tests/multiple.rs compares the two methods' multiple scattering alone.
 #[test]
 fn srbf_dual_scattering_matches_brute_force() {
