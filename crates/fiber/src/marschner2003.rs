@@ -100,6 +100,14 @@ pub struct MarschnerParams {
     pub caustic_limit: f64,
 }
 
+/// Table 1's α_R, β_R and w_c in degrees, as [`MarschnerParams::default`] takes them and as a
+/// user types them.
+pub const DEFAULT_ALPHA_R_DEG: f64 = -7.5;
+/// See [`DEFAULT_ALPHA_R_DEG`].
+pub const DEFAULT_BETA_R_DEG: f64 = 7.5;
+/// See [`DEFAULT_ALPHA_R_DEG`].
+pub const DEFAULT_CAUSTIC_WIDTH_DEG: f64 = 17.5;
+
 impl Default for MarschnerParams {
     /// Marschner 2003 Table 1: η = 1.55, the middle of each range given as a range
     /// (α_R = −7.5°, β_R = 7.5°, w_c = 17.5°, Δη′ = 0.3), Δh_M = 0.5, a circular fiber, and
@@ -109,11 +117,11 @@ impl Default for MarschnerParams {
     fn default() -> Self {
         Self {
             eta: 1.55,
-            alpha_r: (-7.5f64).to_radians(),
-            beta_r: 7.5f64.to_radians(),
+            alpha_r: DEFAULT_ALPHA_R_DEG.to_radians(),
+            beta_r: DEFAULT_BETA_R_DEG.to_radians(),
             mu_a: DVec3::new(0.2, 0.3, 0.5),
             eccentricity: 1.0,
-            caustic_width: 17.5f64.to_radians(),
+            caustic_width: DEFAULT_CAUSTIC_WIDTH_DEG.to_radians(),
             glint_scale: 0.5,
             caustic_fade: 0.3,
             caustic_limit: 0.5,

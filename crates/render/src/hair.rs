@@ -7,7 +7,9 @@
 //! absorption (σ_a or melanin) per strand.
 
 use cuticle_fiber::absorption::mu_a_from_melanin;
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::marschner2003::{
+    DEFAULT_ALPHA_R_DEG, DEFAULT_BETA_R_DEG, DEFAULT_CAUSTIC_WIDTH_DEG, MarschnerParams,
+};
 use cuticle_groom::{Absorption, Appearance};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -42,12 +44,12 @@ impl Default for HairParams {
         let m = MarschnerParams::default();
         Self {
             eta: m.eta,
-            alpha_r_deg: m.alpha_r.to_degrees(),
-            beta_r_deg: m.beta_r.to_degrees(),
+            alpha_r_deg: DEFAULT_ALPHA_R_DEG,
+            beta_r_deg: DEFAULT_BETA_R_DEG,
             mu_a: None,
             default_mu_a: [0.3, 0.5, 0.9],
             eccentricity: 1.0,
-            caustic_width_deg: m.caustic_width.to_degrees(),
+            caustic_width_deg: DEFAULT_CAUSTIC_WIDTH_DEG,
             caustic_fade: m.caustic_fade,
             d_b: 0.7,
         }
