@@ -141,9 +141,7 @@ impl Renderer {
                 .map(|Directional { direction, power }| (direction, 0.0, power))
                 .collect(),
         };
-        let dirs: Vec<DVec3> = lights.iter().map(|l| l.0).collect();
-        let widths: Vec<f64> = lights.iter().map(|l| l.1).collect();
-        let shadow = transmittance(&scene.groom, &points, &dirs, &widths, &spec.shadows);
+        let shadow = shadows_of_lit(scene, &points, &lights);
         timings.shadows = start.elapsed().as_secs_f64();
         Prepared {
             coverage,
@@ -380,6 +378,28 @@ impl SrbfPoint<'_> {
         });
         single + multiple
     }
+}
+
+/// T̃ of every light at every point (`[p * lights + j]`), with opacity maps built only for
+/// lights that carry light: a fitted map leaves some SRBF coefficients zero, and their T̃
+/// (left at 1) is never read.
+fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[(DVec3, f64, DVec3)]) -> Vec<f32> {
+    let lit: Vec<usize> = (0..lights.len())
+        .filter(|&j| lights[j].2 != DVec3::ZERO)
+        .collect();
+    let dirs: Vec<DVec3> = lit.iter().map(|&j| lights[j].0).collect();
+    let widths: Vec<f64> = lit.iter().map(|&j| lights[j].1).collect();
+    let compact = transmittance(&scene.groom, points, &dirs, &widths, &scene.spec.shadows);
+    let mut out = vec![1.0f32; points.len() * lights.len()];
+    for (row, compact_row) in out
+        .chunks_mut(lights.len().max(1))
+        .zip(compact.chunks(lit.len().max(1)))
+    {
+        for (&j, &t) in lit.iter().zip(compact_row) {
+            row[j] = t;
+        }
+    }
+    out
 }
 
 /// The SRBF lights in world space: (direction, λ_j, L_j).
