@@ -198,7 +198,7 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
 fn print_bench(r: &BenchReport) {
     let f = &r.full;
     println!(
-        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.3} s (shading {:.3}, resolve {:.3}); tables {:.2} s once",
+        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.3} s (shading {:.3}, resolve {:.3}), {:.2} frames/s; tables {:.2} s once",
         r.frames,
         r.visible_points,
         r.full_frame,
@@ -209,6 +209,7 @@ fn print_bench(r: &BenchReport) {
         r.rerender_frame,
         r.rerender.shading,
         r.rerender.resolve,
+        1.0 / r.rerender_frame.max(1e-9),
         f.tables
     );
 }
