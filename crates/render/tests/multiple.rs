@@ -210,15 +210,33 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
     assert!((ratio - 1.0).abs() < 0.3, "SRBF / brute energy {ratio}");
 }
 
+/// Under a light of medium width (λ = 0.3) above the hanging hair, shadows of density 1, the
+/// SRBF's multiple scattering is within 5 % of the brute force's in total (measured 0.7 %
+/// above) and its relative RMSE below 0.1 (measured 0.069): the whole dual-scattering path
+/// agrees tightly where a light is narrow enough for its Gaussians. (Seed 004's 1/cos θ_j
+/// normalisation gives 0.997 and 0.077 here: it fails only for wide lights, the next test.)
+/// The agreement loosens as the light widens: 0.956 and 0.10 at λ = 0.6, 0.57 at 1.2.
+#[test]
+fn srbf_multiple_scattering_matches_brute_force_under_a_light_on_the_axis() {
+    let light = SrbfLight::new(Vec3::new(0.0, 1.0, 0.0), 0.3, Vec3::new(0.4, 0.5, 0.8));
+    let (rmse, ratio) = srbf_against_brute_multiple(light, 1.0);
+    eprintln!(
+        "light on the axis, multiple scattering alone: relative RMSE {rmse:.4}, SRBF / brute {ratio:.4}"
+    );
+    assert!(rmse < 0.1, "relative RMSE {rmse}");
+    assert!((ratio - 1.0).abs() < 0.05, "SRBF / brute energy {ratio}");
+}
+
 /// Under the wide sky light (λ = 1.2) centred on the fibers' axis, shadows of density 1: with
 /// seed 004's 1/cos θ_j normalisation of the spread the SRBF's multiple scattering was twice
 /// the brute force's in total and its relative RMSE 2.75; with the exact normalisation
 /// ([`cuticle_render::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total between
 /// 0.45 and 0.75 of the brute force's (measured 0.57; 0.89 at density 0.3, where the RMSE is
 /// 0.12). What remains grows with shadow density; reading T_f at θ_j clamped to ±1 and eqs.
-/// 29–31 as printed each changed it by under 2 %. A likely cause, not yet measured: the SRBF's
-/// T̃ is the transmittance of the light's mean optical depth, which exceeds the mean
-/// transmittance over the directions it spans, leaving forward scattering less.
+/// 29–31 as printed each changed it by under 2 %, and it vanishes for narrower lights on the
+/// axis (the test above). A likely cause, not yet measured: the SRBF's T̃ is the transmittance
+/// of the light's mean optical depth, which exceeds the mean transmittance over the directions
+/// a wide light spans, leaving forward scattering less.
 #[test]
 fn srbf_multiple_scattering_matches_brute_force_under_a_wide_light_at_the_axis() {
     let (rmse, ratio) = srbf_against_brute_multiple(lights()[1], 1.0);

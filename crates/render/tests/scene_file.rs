@@ -30,7 +30,11 @@ fn example_scene_is_the_defaults_and_names_every_key() {
     let (mut written, mut wanted) = (BTreeSet::new(), BTreeSet::new());
     let table = |t: &str| toml::Value::Table(toml::from_str::<toml::Table>(t).unwrap());
     keys(&table(&text), "", &mut written);
-    keys(&table(&toml::to_string(&SceneSpec::default()).unwrap()), "", &mut wanted);
+    keys(
+        &table(&toml::to_string(&SceneSpec::default()).unwrap()),
+        "",
+        &mut wanted,
+    );
     let missing: Vec<_> = wanted.difference(&written).collect();
     assert!(missing.is_empty(), "docs/scene.toml lacks {missing:?}");
 }
