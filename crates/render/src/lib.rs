@@ -10,6 +10,18 @@
 //! documentation). Seed 004's eq. 2 is this with L_i = Σ_j L_j G_j; ½ M_p(θ_h) as a function
 //! of θ_i is the unit normal density of mean 2α_p − θ_o and deviation 2β_p (seed 004 eq. 7).
 //! Pixels hold L_o times coverage plus the background for the rest.
+//!
+//! # Where things are
+//! - The frame: [`renderer`] (stages and their timings), [`scene`], [`camera`], [`raster`]
+//!   (supersampled strands), [`shadow`] (deep opacity maps filtered per light).
+//! - Built once: [`tables`] (seed 004 §5's 𝒞_k and ℋ_k), [`half_circle`], [`spread`].
+//! - Rebuilt when a hair parameter changes, kept across absorption edits ([`last_built`]):
+//!   [`lobe_table`] (the TT/TRT circular Gaussians of [`cg_lobes`] over θ_d × absorption),
+//!   [`back_scattering_tables`] (Zinke's averages), both on the shared [`absorption_axis`].
+//! - Shading: [`single_scattering`] (eq. 11 with [`quadrature`] and [`circular_gaussian`]),
+//!   [`dual_scattering`] with [`forward_scattering`].
+//! - The reference: [`brute`] and [`brute_multiple`] from the exact functions
+//!   ([`exact_azimuthal`], [`exact_half_circle`]).
 
 pub mod absorption_axis;
 pub mod angles;
