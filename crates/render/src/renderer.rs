@@ -15,16 +15,16 @@ use crate::exact_half_circle::ExactHalfCircle;
 use crate::fiber_frames::{frame_at, strand_of_points};
 use crate::half_circle::HalfCircle;
 use crate::last_built::LastBuilt;
-use crate::lobe_table::{AzimuthalLobes, LobeTable, trt_shape};
+use crate::lobe_table::{LobeTable, trt_shape};
 use crate::progress::{Counter, Progress};
 use crate::raster::{Coverage, EMPTY, rasterize};
 use crate::scene::{Method, Scene, light_to_world};
-use crate::shadow::transmittance;
+use crate::shadow::{ShadowOptions, transmittance};
 use crate::single_scattering::{LocalLight, ShadingFiber, shade};
 use crate::spread::SpreadNormalisation;
 use crate::tables::Tables;
-use cuticle_fiber::Marschner2003;
 use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::{FiberFrame, Marschner2003};
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -171,105 +171,69 @@ impl Renderer {
         let fibers: Vec<MarschnerParams> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
             .collect();
-        let lobe_table = self.lobe_table(&scene.spec.hair.fiber(None));
-        let nl = prepared.lights.len();
-        let shadows = scene.spec.shadows;
-        let m = scene.spec.quadrature;
-        let method = scene.spec.method;
         let hair = &scene.spec.hair;
-        let back = scene
-            .spec
-            .multiple
-            .then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
-        let dual = back.as_ref().map(|back| Dual {
-            half: &self.half,
-            spread: &self.spread,
-            shadows: scene.spec.shadows,
-            back,
-            d_b: hair.d_b,
-            m,
-        });
-        let exact_half = (method == Method::Brute && scene.spec.multiple)
-            .then(|| ExactHalfCircle::build(hair.eta));
-        let brute_dual = back
-            .as_ref()
-            .zip(exact_half.as_ref())
-            .map(|(back, half)| BruteDual {
-                half,
-                spread: &self.spread,
-                back,
-                d_b: hair.d_b,
-            });
-        let directional: Vec<Directional> = prepared
-            .lights
-            .iter()
-            .map(|l| Directional {
-                direction: l.0,
-                power: l.2,
-            })
-            .collect();
+        let multiple = scene.spec.multiple;
+        let back = multiple.then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
+        let (lobes, exact_half) = match scene.spec.method {
+            Method::Srbf => (Some(self.lobe_table(&hair.fiber(None))), None),
+            Method::Brute => (None, multiple.then(|| ExactHalfCircle::build(hair.eta))),
+        };
+        let shader = match (&lobes, &exact_half) {
+            (Some(lobes), _) => FrameShader::Srbf(SrbfFrame {
+                tables: &self.tables,
+                lobes,
+                dual: back.as_deref().map(|back| Dual {
+                    half: &self.half,
+                    spread: &self.spread,
+                    shadows: scene.spec.shadows,
+                    back,
+                    d_b: hair.d_b,
+                    m: scene.spec.quadrature,
+                }),
+                lights: &prepared.lights,
+                shadows: scene.spec.shadows,
+                m: scene.spec.quadrature,
+            }),
+            (None, half) => FrameShader::Brute(BruteFrame {
+                lights: prepared
+                    .lights
+                    .iter()
+                    .map(|l| Directional {
+                        direction: l.0,
+                        power: l.2,
+                    })
+                    .collect(),
+                dual: back
+                    .as_deref()
+                    .zip(half.as_ref())
+                    .map(|(back, half)| BruteDual {
+                        half,
+                        spread: &self.spread,
+                        back,
+                        d_b: hair.d_b,
+                    }),
+            }),
+        };
+        let nl = prepared.lights.len();
         prepared
             .points
             .par_iter()
             .enumerate()
             .map_init(
                 || (Vec::new(), Vec::new()),
-                |(local, lit), (k, &p)| {
-                    let p = p as usize;
-                    let fiber = &fibers[prepared.strand_of_point[p] as usize];
-                    let frame = frame_at(&scene.groom, p);
-                    let wo =
-                        (prepared.view.eye - scene.groom.positions()[p].as_dvec3()).normalize();
-                    let shadow = &prepared.shadow[k * nl..(k + 1) * nl];
+                |scratch, (k, &p)| {
                     counter.tick();
-                    match method {
-                        Method::Srbf => {
-                            let ao = frame.angles(wo);
-                            local.clear();
-                            local.extend(prepared.lights.iter().map(|l| {
-                                let a = frame.angles(l.0);
-                                LocalLight {
-                                    theta: a.theta,
-                                    phi: a.phi,
-                                    bandwidth: l.1,
-                                    radiance: l.2,
-                                }
-                            }));
-                            lit.clear();
-                            lit.extend(local.iter().zip(shadow).map(|(l, &t)| {
-                                let t = t as f64;
-                                LocalLight {
-                                    radiance: if shadows.passes(t) {
-                                        l.radiance * t
-                                    } else {
-                                        DVec3::ZERO
-                                    },
-                                    ..*l
-                                }
-                            }));
-                            let point = SrbfPoint {
-                                tables: &self.tables,
-                                dual: dual.as_ref(),
-                                theta_o: ao.theta,
-                                phi_o: ao.phi,
-                                m,
-                            };
-                            let lobes = lobe_table.for_fiber(&self.tables, fiber);
-                            let fiber = ShadingFiber {
-                                params: fiber,
-                                lobes: &lobes,
-                            };
-                            point.shade(fiber, local, lit, shadow)
-                        }
-                        Method::Brute => {
-                            let model = Marschner2003::new(*fiber).expect("validated parameters");
-                            let lights = brute::local_lights(&frame, &directional);
-                            let ao = frame.angles(wo);
-                            let single = brute::shade(&model, ao, &lights, shadow);
-                            let multiple = brute_dual
-                                .map_or(DVec3::ZERO, |d| d.shade(fiber, ao, &lights, shadow));
-                            single + multiple
-                        }
+                    let p = p as usize;
+                    let point = ShadingPoint {
+                        fiber: &fibers[prepared.strand_of_point[p] as usize],
+                        frame: frame_at(&scene.groom, p),
+                        toward_eye: (prepared.view.eye - scene.groom.positions()[p].as_dvec3())
+                            .normalize(),
+                        shadow: &prepared.shadow[k * nl..(k + 1) * nl],
+                    };
+                    match &shader {
+                        FrameShader::Srbf(srbf) => srbf.shade(&point, scratch),
+                        FrameShader::Brute(brute) => brute.shade(&point),
                     }
                 },
             )
@@ -353,28 +317,90 @@ impl Renderer {
     }
 }
 
-/// One visible point of the SRBF path, seen at (θ_o, φ_o) in its fiber frame.
-struct SrbfPoint<'a> {
+/// One visible point as shading reads it.
+struct ShadingPoint<'a> {
+    fiber: &'a MarschnerParams,
+    frame: FiberFrame,
+    /// Unit vector from the point toward the eye.
+    toward_eye: DVec3,
+    /// T̃ of each light at the point.
+    shadow: &'a [f32],
+}
+
+/// How one frame's points are shaded.
+enum FrameShader<'a> {
+    Srbf(SrbfFrame<'a>),
+    Brute(BruteFrame<'a>),
+}
+
+/// What the SRBF path reads at every point of a frame.
+struct SrbfFrame<'a> {
     tables: &'a Tables,
-    dual: Option<&'a Dual<'a>>,
-    theta_o: f64,
-    phi_o: f64,
+    lobes: &'a LobeTable,
+    dual: Option<Dual<'a>>,
+    /// World direction, λ_j and L_j of each light.
+    lights: &'a [(DVec3, f64, DVec3)],
+    shadows: ShadowOptions,
     m: usize,
 }
 
-impl SrbfPoint<'_> {
-    /// Single scattering from the shadowed lights `lit` plus, when enabled, dual scattering
-    /// from the unshadowed `local` ones and their transmittances `shadow`.
-    fn shade<L: AzimuthalLobes>(
+impl SrbfFrame<'_> {
+    /// Single scattering from the lights seen in the fiber frame and shadowed (none below the
+    /// cutoff), plus dual scattering from the unshadowed lights and their T̃. `scratch` holds
+    /// the two light lists between points.
+    fn shade(
         &self,
-        fiber: ShadingFiber<L>,
-        local: &[LocalLight],
-        lit: &[LocalLight],
-        shadow: &[f32],
+        point: &ShadingPoint,
+        (local, lit): &mut (Vec<LocalLight>, Vec<LocalLight>),
     ) -> DVec3 {
-        let single = shade(self.tables, fiber, self.theta_o, self.phi_o, lit, self.m);
+        let ao = point.frame.angles(point.toward_eye);
+        local.clear();
+        local.extend(self.lights.iter().map(|l| {
+            let a = point.frame.angles(l.0);
+            LocalLight {
+                theta: a.theta,
+                phi: a.phi,
+                bandwidth: l.1,
+                radiance: l.2,
+            }
+        }));
+        lit.clear();
+        lit.extend(local.iter().zip(point.shadow).map(|(l, &t)| {
+            let t = t as f64;
+            let passes = self.shadows.passes(t);
+            LocalLight {
+                radiance: if passes { l.radiance * t } else { DVec3::ZERO },
+                ..*l
+            }
+        }));
+        let lobes = self.lobes.for_fiber(self.tables, point.fiber);
+        let fiber = ShadingFiber {
+            params: point.fiber,
+            lobes: &lobes,
+        };
+        let single = shade(self.tables, fiber, ao.theta, ao.phi, lit, self.m);
+        let multiple = self.dual.as_ref().map_or(DVec3::ZERO, |d| {
+            d.shade(fiber, ao.theta, ao.phi, local, point.shadow)
+        });
+        single + multiple
+    }
+}
+
+/// What the brute-force reference reads at every point of a frame.
+struct BruteFrame<'a> {
+    lights: Vec<Directional>,
+    dual: Option<BruteDual<'a>>,
+}
+
+impl BruteFrame<'_> {
+    /// The exact model's single scattering from every directional light, plus dual scattering.
+    fn shade(&self, point: &ShadingPoint) -> DVec3 {
+        let model = Marschner2003::new(*point.fiber).expect("validated parameters");
+        let lights = brute::local_lights(&point.frame, &self.lights);
+        let ao = point.frame.angles(point.toward_eye);
+        let single = brute::shade(&model, ao, &lights, point.shadow);
         let multiple = self.dual.map_or(DVec3::ZERO, |d| {
-            d.shade(fiber, self.theta_o, self.phi_o, local, shadow)
+            d.shade(point.fiber, ao, &lights, point.shadow)
         });
         single + multiple
     }
