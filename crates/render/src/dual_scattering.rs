@@ -27,8 +27,8 @@
 //! weighted by their scattered shares.
 
 use crate::absorption_axis;
+use crate::angles::Outgoing;
 use crate::angles::wrap_pi;
-use crate::angles::{Incident, Outgoing};
 use crate::back_scattering_tables::{Averages, BackScatteringTables};
 use crate::cg_lobes::r_coefficients;
 use crate::circular_gaussian as cg;
@@ -165,20 +165,10 @@ impl Dual<'_> {
                 let (alpha, beta) = lobes[t];
                 let window =
                     Window::normal_product(theta_j, sigma_f, 2.0 * alpha - theta_o, 2.0 * beta);
-                if window.scale < 1e-12 {
-                    return DVec3::ZERO;
-                }
-                window.integrate(self.m, |theta_i| {
-                    let Incident {
-                        cos_i,
-                        theta_d,
-                        cos2_d,
-                    } = outgoing.incident(theta_i);
-                    if cos_i <= 1e-6 {
-                        return DVec3::ZERO;
-                    }
-                    let n = match t {
-                        0 => DVec3::splat(r_half(eta, cos2_d.sqrt(), &w)),
+                window.integrate_incident(self.m, &outgoing, |sample| {
+                    let theta_d = sample.theta_d;
+                    match t {
+                        0 => DVec3::splat(r_half(eta, sample.cos2_d.sqrt(), &w)),
                         1 => {
                             let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
@@ -191,8 +181,7 @@ impl Dual<'_> {
                                 self.unit_half(bandwidth, delta - trt.centre[s])
                             })
                         }
-                    };
-                    n * (cos_i * cos_i / cos2_d)
+                    }
                 })
             })
             .sum()
@@ -227,13 +216,7 @@ impl Dual<'_> {
                 2.0 * a.back_shift - outgoing.theta,
                 2.0 * a.back_width,
             );
-            let integral = window.integrate(self.m, |theta_i| {
-                let s = outgoing.incident(theta_i);
-                if s.cos_i <= 1e-6 {
-                    return DVec3::ZERO;
-                }
-                DVec3::splat(s.cos_i * s.cos_i / s.cos2_d)
-            });
+            let integral = window.integrate_incident(self.m, &outgoing, |_| DVec3::ONE);
             a.back * azimuth * integral.x
         }))
     }

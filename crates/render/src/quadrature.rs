@@ -2,6 +2,7 @@
 //! quadrature (seed 004 §4.2.2): f is sampled at m + 1 points — the two ends ±π/2 and m − 1
 //! points spread uniformly over μ ± (m − 2)λ/2 — and ∫ g · (b_s x + c_s) is exact on each piece.
 
+use crate::angles::{Incident, Outgoing};
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
@@ -148,6 +149,33 @@ fn erfc_from_gauss(x: f64, gauss: f64) -> f64 {
     ];
     let t = 1.0 / (1.0 + P * x);
     t * (A[0] + t * (A[1] + t * (A[2] + t * (A[3] + t * A[4])))) * gauss
+}
+
+/// Below this scale a window contributes nothing worth integrating.
+const NEGLIGIBLE_SCALE: f64 = 1e-12;
+
+impl Window {
+    /// ∫ window · n(θ_i) cos²θ_i / cos²θ_d dθ_i with θ_d = (θ_o − θ_i)/2: the outer integral of
+    /// seed 004 eqs. 11, 27 and 29, whose factor cos²θ_i/cos²θ_d every mode shares. A negligible
+    /// window gives zero, and so does a grazing sample (cos θ_i ≤ 1e-6, where n may not be
+    /// defined).
+    pub fn integrate_incident(
+        &self,
+        m: usize,
+        outgoing: &Outgoing,
+        mut n: impl FnMut(&Incident) -> DVec3,
+    ) -> DVec3 {
+        if self.scale < NEGLIGIBLE_SCALE {
+            return DVec3::ZERO;
+        }
+        self.integrate(m, |theta_i| {
+            let s = outgoing.incident(theta_i);
+            if s.cos_i <= 1e-6 {
+                return DVec3::ZERO;
+            }
+            n(&s) * (s.cos_i * s.cos_i / s.cos2_d)
+        })
+    }
 }
 
 /// erf(u1) − erf(u0) without cancellation in the tails, from erfc(|u|) at each end.

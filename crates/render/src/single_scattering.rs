@@ -94,20 +94,14 @@ pub fn modes<L: AzimuthalLobes>(
             2.0 * alpha - theta_o,
             2.0 * beta,
         );
-        if window.scale < 1e-12 {
-            return DVec3::ZERO;
-        }
-        window.integrate(m, |theta_i| {
+        window.integrate_incident(m, &outgoing, |s| {
             let Incident {
                 cos_i,
                 theta_d,
                 cos2_d,
-            } = outgoing.incident(theta_i);
-            if cos_i <= 1e-6 {
-                return DVec3::ZERO;
-            }
+            } = *s;
             let lambda = light.bandwidth / (cos_i * cos_j).sqrt();
-            let n = match t {
+            match t {
                 0 => DVec3::splat(r_convolved(
                     tables,
                     fiber.params.eta,
@@ -120,8 +114,7 @@ pub fn modes<L: AzimuthalLobes>(
                     let eta = mean_eta_star(tables, fiber.params, lambda, azimuth.phi_sum);
                     trt_convolved(&fiber.lobes.trt(eta, theta_d), sharpness(lambda), &azimuth)
                 }
-            };
-            n * (cos_i * cos_i / cos2_d)
+            }
         })
     })
 }
