@@ -115,13 +115,7 @@ impl DEon2011 {
             let (width, ss, cs) = self.prepared[p];
             width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
         });
-        LobeValues([
-            m[0] * n[0],
-            m[1] * n[1],
-            m[2] * n[2],
-            m[3] * n[3],
-            m[3] * n[4],
-        ])
+        LobeValues::separable(m, n)
     }
 
     /// The longitudinal lobe of mode p for light at θ_i.

@@ -49,6 +49,18 @@ impl Lobe {
 pub struct LobeValues(pub [DVec3; 5]);
 
 impl LobeValues {
+    /// M_p N_p per lobe from the longitudinal lobes of R, TT, TRT, TRRT and the five azimuthal
+    /// ones (the p ≥ 4 remainder shares TRRT's longitudinal lobe).
+    pub fn separable(m: [f64; 4], n: [DVec3; 5]) -> Self {
+        Self([
+            m[0] * n[0],
+            m[1] * n[1],
+            m[2] * n[2],
+            m[3] * n[3],
+            m[3] * n[4],
+        ])
+    }
+
     pub fn get(&self, lobe: Lobe) -> DVec3 {
         self.0[lobe.index()]
     }

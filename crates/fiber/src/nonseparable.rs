@@ -102,13 +102,7 @@ impl NonSeparable {
         let n = self.deon.azimuthal_all(wi.theta, theta_d, phi, weighting);
         let m: [f64; 4] =
             std::array::from_fn(|p| self.longitudinal(p, wi.theta, phi).eval(wo.theta));
-        LobeValues([
-            m[0] * n[0],
-            m[1] * n[1],
-            m[2] * n[2],
-            m[3] * n[3],
-            m[3] * n[4],
-        ])
+        LobeValues::separable(m, n)
     }
 
     /// θ_o and φ for TT or TRT by the fixed-point iteration of §3: guess θ_o = −θ_i, then
