@@ -1,4 +1,4 @@
-//! Lat-long images on disk (DESIGN.md §4–5): 32-bit float RGB OpenEXR (ZIP-compressed), a
+//! Lat-long images on disk (docs/conventions.md §4–5): 32-bit float RGB OpenEXR (ZIP-compressed), a
 //! tone-mapped PNG beside each for people, and `azimuthal.csv`. Shared by every command that
 //! writes lobe images (`sim`, `sweep`, `lobes`).
 
@@ -10,7 +10,7 @@ use glam::DVec3;
 use std::io::Cursor;
 use std::path::Path;
 
-/// The lobe file names, in lobe order, then the sum (DESIGN.md §5).
+/// The lobe file names, in lobe order, then the sum (docs/conventions.md §5).
 pub const LOBE_FILES: [&str; 6] = ["R", "TT", "TRT", "TRRT", "rest", "total"];
 
 /// The image as an OpenEXR file in memory: R, G, B channels of 32-bit floats, ZIP compression.
@@ -105,7 +105,7 @@ pub fn png_bytes_with_white(img: &LatLongImage, w: f64) -> Result<Vec<u8>> {
 
 /// `azimuthal.csv`: a `phi` column (the φ of each column's centre), then for each named image
 /// its density in φ, ∫ S cos θ dθ (channel mean), so that a column's sum times Δφ is the
-/// image's energy (DESIGN.md §5).
+/// image's energy (docs/conventions.md §5).
 pub fn azimuthal_csv(images: &[(&str, &LatLongImage)]) -> Result<String> {
     let Some((_, first)) = images.first() else {
         bail!("no images for azimuthal.csv")

@@ -34,7 +34,7 @@ enum Command {
     Sweep(commands::sweep::Args),
     /// Environment light: fit an environment map with J SRBF lights (fit).
     Env(commands::env::Args),
-    /// Render a groom under environment light (seed 004's SRBF renderer, or --method brute).
+    /// Render a groom under environment light (Xu et al. 2011's SRBF renderer, or --method brute).
     Render(commands::render::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),

@@ -1,5 +1,5 @@
 //! Writing results: every file lands atomically (a temporary file in the same folder, then a
-//! rename), so an interrupted command never leaves a half-written output (DESIGN.md §5).
+//! rename), so an interrupted command never leaves a half-written output (docs/conventions.md §5).
 
 use anyhow::{Context, Result};
 use std::fs;

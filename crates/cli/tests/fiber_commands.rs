@@ -1,5 +1,5 @@
 //! The fiber commands end to end: bad parameters get one clear error line and a non-zero exit;
-//! good ones write every file DESIGN.md §5 promises.
+//! good ones write every file docs/conventions.md §5 promises.
 
 use std::process::Command;
 

@@ -1,10 +1,10 @@
-//! The azimuthal scattering functions of d'Eon et al. 2011 (seed 000 eq. 4):
+//! The azimuthal scattering functions of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 4):
 //! N_p(φ) = ½ ∫ A(p, h) D_p(v_{p,N}, φ − Φ(p, h)) dh, with D_p a wrapped Gaussian.
 //!
 //! The integral is taken in γ_i (h = sin γ_i, dh = cos γ_i dγ_i) rather than in h: Φ has an
 //! unbounded slope in h at the fiber's edges but a bounded one in γ_i, so a composite
 //! Gauss–Legendre rule whose panel count follows the lobe width converges for any roughness.
-//! Seed 000's fixed 70-point rule in h errs by 17 % of TT's peak at β = 0.02 (4·10⁻⁷ at
+//! d'Eon et al. 2014's fixed 70-point rule in h errs by 17 % of TT's peak at β = 0.02 (4·10⁻⁷ at
 //! β = 0.3); this rule by 3·10⁻¹⁴ (test `gamma_panels_converge_where_a_fixed_rule_in_h_rings`).
 
 use crate::attenuation::attenuation;
@@ -48,7 +48,7 @@ pub struct AzimuthalScattering {
 }
 
 impl AzimuthalScattering {
-    /// Seed 000 §2.4–2.5: v_{1,N} = β²/2 and v_{2,N} = 2β²; TRRT takes TRT's.
+    /// d'Eon et al. 2014 §2.4–2.5: v_{1,N} = β²/2 and v_{2,N} = 2β²; TRRT takes TRT's.
     pub fn new(eta: f64, beta: f64, mu_a: DVec3) -> Self {
         let b2 = beta * beta;
         Self {
@@ -85,7 +85,7 @@ impl AzimuthalScattering {
         }
     }
 
-    /// R without azimuthal roughness (seed 000 §2.3): the single root h = −sin(φ/2) of
+    /// R without azimuthal roughness (d'Eon et al. 2014 §2.3): the single root h = −sin(φ/2) of
     /// Φ(0, h) = φ, so N_R = ¼ cos(φ/2) A(0, h).
     fn eval_r(&self, theta_i: f64, phi: f64, weighting: Weighting) -> DVec3 {
         let phi = crate::frame::wrap_pi(phi);
@@ -265,7 +265,7 @@ mod tests {
     }
 
     /// Why the integral is taken in γ with panels: against a reference of 4096 panels, the
-    /// composite rule stays exact while seed 000's fixed 70-point rule in h rings for narrow
+    /// composite rule stays exact while d'Eon et al. 2014's fixed 70-point rule in h rings for narrow
     /// lobes (measured: 17 % of the peak at β = 0.02).
     #[test]
     fn gamma_panels_converge_where_a_fixed_rule_in_h_rings() {

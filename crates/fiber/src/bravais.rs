@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-/// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (seed 003).
+/// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
 pub fn eta_perp(eta: f64, theta: f64) -> f64 {
     let (s, c) = theta.sin_cos();
     (eta * eta - s * s).max(0.0).sqrt() / c.abs().max(1e-12)
@@ -20,7 +20,7 @@ pub fn gamma_t(h: f64, eta_prime: f64) -> f64 {
     (h / eta_prime).clamp(-1.0, 1.0).asin()
 }
 
-/// Φ(p, h) = 2pγ_t − 2γ_i + pπ (seed 000 eq. 3), unwrapped.
+/// Φ(p, h) = 2pγ_t − 2γ_i + pπ (d'Eon et al. 2014 eq. 3), unwrapped.
 pub fn azimuthal_deflection(p: u32, h: f64, eta_prime: f64) -> f64 {
     let p = p as f64;
     let gamma_i = h.clamp(-1.0, 1.0).asin();
@@ -34,7 +34,7 @@ pub fn cos_theta_t(eta: f64, theta: f64) -> f64 {
 }
 
 /// Transmittance of one internal segment: exp(−2 μ_a cos γ_t / cos θ_t), the chord of a unit
-/// circle at refracted offset γ_t, stretched by the inclination (DESIGN.md §8 erratum).
+/// circle at refracted offset γ_t, stretched by the inclination (docs/conventions.md §8 erratum).
 pub fn segment_transmittance(mu_a: f64, gamma_t: f64, cos_theta_t: f64) -> f64 {
     (-2.0 * mu_a * gamma_t.cos() / cos_theta_t.max(1e-12)).exp()
 }
@@ -48,7 +48,7 @@ mod tests {
         assert_eq!(eta_perp(1.55, 0.0), 1.55);
         assert!((eta_par(1.55, 0.0) - 1.55).abs() < 1e-15);
         assert!(eta_perp(1.55, 1.0) > 1.55 && eta_par(1.55, 1.0) < 1.55);
-        // η′ η″ = η² (seed 003's two indices are reciprocal through η²).
+        // η′ η″ = η² (Marschner et al. 2003's two indices are reciprocal through η²).
         assert!((eta_perp(1.55, 0.7) * eta_par(1.55, 0.7) - 1.55f64.powi(2)).abs() < 1e-12);
     }
 

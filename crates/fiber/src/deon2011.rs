@@ -1,8 +1,8 @@
-//! The energy-conserving model of d'Eon et al. 2011 (seed 000 eq. 4–5), with the importance
+//! The energy-conserving model of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 4–5), with the importance
 //! sampling of d'Eon et al. 2013.
 //!
 //! Each lobe p is M(v_p, θ_cone,p, θ_o) · N_p(φ). The lobes are separable: v_p and the cone
-//! shift are constants of the fiber. They are the first-order Nusselt perturbations of seed 000
+//! shift are constants of the fiber. They are the first-order Nusselt perturbations of d'Eon et al. 2014
 //! §2.2 at normal incidence (h = 0, θ = 0), so that the model and the non-separable one agree
 //! there: with Beckmann roughness β the per-axis micro-normal slope deviation is β/√2, and
 //! the lobe widths are √v = β√2 (R), β(η − 1) (TT), β(2η − 1) (TRT), β(3η − 1) (TRRT and rest);
@@ -13,7 +13,7 @@
 //! of p (see [`Weighting::Selection`]), and every sample's weight is S / pdf.
 //!
 //! Reciprocity: M with a cone at −θ_i + shift is not symmetric under exchanging ω_i and ω_o
-//! (seed 000 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
+//! (d'Eon et al. 2014 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
 use crate::bravais::{azimuthal_deflection, eta_perp};

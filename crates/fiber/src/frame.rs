@@ -1,4 +1,4 @@
-//! The fiber frame and its angles (DESIGN.md §2).
+//! The fiber frame and its angles (docs/conventions.md §2).
 //!
 //! `u` is the fiber tangent; `v` and `w` span the normal plane. For a direction ω,
 //! `sin θ = ω·u` and `φ = atan2(ω·w, ω·v)`, so θ ∈ [−π/2, π/2] and φ ∈ (−π, π].

@@ -16,7 +16,7 @@ pub fn fresnel_dielectric(cos_i: f64, eta: f64) -> f64 {
 }
 
 /// Marschner 2003's oblique Fresnel factor: the projected 2D problem at angle `gamma` with the
-/// perpendicular component from η′ and the parallel component from η″ (seed 003 "Definition
+/// perpendicular component from η′ and the parallel component from η″ (Marschner et al. 2003 "Definition
 /// of F"). `eta_perp`, `eta_par` below 1 describe light leaving the fiber.
 pub fn fresnel_oblique(eta_perp: f64, eta_par: f64, gamma: f64) -> f64 {
     let s = polarised_reflectance(eta_perp, gamma, Polarisation::Perpendicular);

@@ -1,4 +1,4 @@
-//! The lat-long grid every lobe image uses (DESIGN.md §4): `width` columns over φ ∈ [−π, π),
+//! The lat-long grid every lobe image uses (docs/conventions.md §4): `width` columns over φ ∈ [−π, π),
 //! `height` rows over θ from +π/2 (row 0) down to −π/2; pixel values are S in sr⁻¹.
 
 use glam::DVec3;
@@ -102,7 +102,7 @@ impl LatLongImage {
             .sum()
     }
 
-    /// The density in φ per column, ∫ S cos θ dθ (DESIGN.md §5 `azimuthal.csv`), RGB.
+    /// The density in φ per column, ∫ S cos θ dθ (docs/conventions.md §5 `azimuthal.csv`), RGB.
     pub fn azimuthal(&self) -> Vec<DVec3> {
         let g = self.grid;
         (0..g.width)

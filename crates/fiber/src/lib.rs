@@ -1,6 +1,6 @@
 //! Hair fiber scattering: the shared fiber frame and lat-long grid, the special functions and
 //! Fresnel factors the models share, and the models themselves — [`Marschner2003`],
-//! [`DEon2011`] and [`NonSeparable`] — each able to evaluate S (DESIGN.md §3), importance-sample
+//! [`DEon2011`] and [`NonSeparable`] — each able to evaluate S (docs/conventions.md §3), importance-sample
 //! it and report the sampling pdf through [`FiberModel`]. [`table::AzimuthalTable`] is the fast
 //! path for the azimuthal terms of the last two, [`furnace`] the white-furnace integrator.
 //!

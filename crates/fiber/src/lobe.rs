@@ -3,7 +3,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
-/// A scattering mode, by its number p of internal path segments (DESIGN.md §2).
+/// A scattering mode, by its number p of internal path segments (docs/conventions.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 pub enum Lobe {
     R,
@@ -32,7 +32,7 @@ impl Lobe {
         }
     }
 
-    /// The file and JSON name (DESIGN.md §5).
+    /// The file and JSON name (docs/conventions.md §5).
     pub const fn name(self) -> &'static str {
         match self {
             Lobe::R => "R",

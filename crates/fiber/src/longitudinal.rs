@@ -1,10 +1,10 @@
-//! The longitudinal scattering function M of d'Eon et al. 2011 (seed 000 eq. 5) and its exact
+//! The longitudinal scattering function M of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 5) and its exact
 //! importance sampling (d'Eon et al. 2013).
 //!
 //! M(v, θ_cone, θ_o) = csch(1/v)/(2v) · exp(sin θ_cone sin θ_o / v) · I0(cos θ_cone cos θ_o / v)
 //! is the φ-marginal of a von Mises–Fisher distribution of concentration 1/v about the direction
-//! at inclination θ_cone, so ∫ M cos θ_o dθ_o = 1. Seed 000 prints an extra 1/cos θ_o: that
-//! belongs to its normalisation in dθ_o; here S is per steradian (DESIGN.md §3), where the
+//! at inclination θ_cone, so ∫ M cos θ_o dθ_o = 1. d'Eon et al. 2014 prints an extra 1/cos θ_o: that
+//! belongs to its normalisation in dθ_o; here S is per steradian (docs/conventions.md §3), where the
 //! cosine is part of the measure, so M carries no such factor.
 
 use crate::special::{log_i0, log1m_exp_neg};
@@ -68,7 +68,7 @@ impl LongitudinalWidth {
         }
     }
 
-    /// M for a cone and an outgoing inclination given by their sines and cosines (seed 000 eq. 5).
+    /// M for a cone and an outgoing inclination given by their sines and cosines (d'Eon et al. 2014 eq. 5).
     pub fn eval(&self, sin_cone: f64, cos_cone: f64, sin_o: f64, cos_o: f64) -> f64 {
         let x = (cos_cone * cos_o).abs() * self.inv_v;
         (self.log_norm + sin_cone * sin_o * self.inv_v + log_i0(x)).exp()

@@ -1,15 +1,15 @@
 //! The hair scattering model of Marschner, Jensen, Cammarano, Worley and Hanrahan 2003, *Light
-//! scattering from human hair fibers* (seed 003 surveys it), with its TRT caustic treatment and
+//! scattering from human hair fibers* (docs/references.md lists the survey we read it from), with its TRT caustic treatment and
 //! eccentricity, and an exact importance sampling.
 //!
 //! # The model
-//! Three lobes p = 0 (R), 1 (TT), 2 (TRT), each M_p(θ_h) N_p(φ) / cos²θ_d (seed 003 "The
+//! Three lobes p = 0 (R), 1 (TT), 2 (TRT), each M_p(θ_h) N_p(φ) / cos²θ_d (Marschner et al. 2003 "The
 //! Grand Result"; Marschner 2003's practical model):
 //! - M_p is a unit-integral Gaussian in θ_h = (θ_i + θ_o)/2 with shift α_p and width β_p:
 //!   α_TT = −α_R/2, α_TRT = −3α_R/2, β_TT = β_R/2, β_TRT = 2β_R (Marschner 2003 Table 1).
 //! - N_p(φ) = Σ A(p, h) / |2 dΦ̂/dh| over every root γ_i ∈ [−π/2, π/2] of
 //!   Φ̂(p, γ_i) = (6pc/π − 2)γ_i − 8pc/π³ γ_i³ + pπ ≡ φ (mod 2π), c = asin(1/η′),
-//!   η′ = η′(η, θ_d) (Marschner 2003's cubic approximation; seed 003 "Finding γ_i"). The cubic has one or three real
+//!   η′ = η′(η, θ_d) (Marschner 2003's cubic approximation; Marschner et al. 2003 "Finding γ_i"). The cubic has one or three real
 //!   roots; those in [−π/2, π/2] are what count: TRT has three between its caustics ±φ_c and
 //!   one beyond them, except for η′ < 1.556, where φ_c lies beyond the edge ray
 //!   |Φ̂(2, ±π/2) − 2π| = |4c − π|: there two remain between the edge ray and φ_c, and none
@@ -17,20 +17,20 @@
 //!   η′ ≥ 1.55 (0.037 and 0.075 at η′ = 1.4; `cubic_deflection_tracks_the_exact_one`).
 //! - A(0, h) = F(η′, η″, γ_i) and A(p, h) = (1 − F(η′, η″, γ_i))² F(1/η′, 1/η″, γ_t)^{p−1} T^p
 //!   with the oblique Fresnel factor and T = exp(−2 μ_a cos γ_t / cos θ_t), the chord of the
-//!   unit circle (DESIGN.md §8 erratum; seed 003 prints exp(−σ_a(2 + 2 cos 2γ_t))). The whole
+//!   unit circle (docs/conventions.md §8 erratum; Marschner et al. 2003 prints exp(−σ_a(2 + 2 cos 2γ_t))). The whole
 //!   azimuthal part is a function of θ_d, as in Marschner's paper, so θ_t is the refracted
 //!   inclination of the difference angle, sin θ_t = sin θ_d / η (equal to θ_i's on the specular
 //!   cone), and the model stays reciprocal.
 //! - TRT replaces its caustic singularities by Gaussian glints (Marschner 2003's N_TRT listing, see
-//!   [`Caustic`]), and uses η*(φ_h) for an elliptical fiber (seed 004 eq. 24, see [`eta_star`]).
+//!   [`Caustic`]), and uses η*(φ_h) for an elliptical fiber (Xu et al. 2011 eq. 24, see [`eta_star`]).
 //!
-//! # Units (DESIGN.md §3)
+//! # Units (docs/conventions.md §3)
 //! Marschner's S is defined through curve radiance L̄, radiance integrated across the fiber's
 //! projected width, which is power per steradian per unit *projected* length: a unit length of
 //! fiber seen from ω_o projects to cos θ_o. The power intercepted per unit length from a beam
 //! of radiance L_i over dω_i is D L_i cos θ_i dω_i, which is exactly the factor in Marschner's
 //! L̄_o = D ∫ S L_i cos θ_i dω_i. So the fraction of intercepted power per steradian — this
-//! project's S — is Marschner's S times cos θ_o. (DESIGN.md's "Marschner's S with cos θ_i kept
+//! project's S — is Marschner's S times cos θ_o. (docs/conventions.md's "Marschner's S with cos θ_i kept
 //! outside" misses this cos θ_o.) Check on his smooth cylinder, S = δ(θ_o + θ_i) N / cos²θ:
 //! ∫ S cos θ_o dω_o = ∫∫ δ N cos²θ_o / cos²θ dθ_o dφ = ∫ N dφ, the albedo. ✓
 //!
@@ -216,7 +216,7 @@ impl MarschnerParams {
                 "[-0.349, 0.349] radians",
             ),
             ("beta_r", b, b > 0.0 && b <= MAX_BETA, "(0, 1] radians"),
-            // η* stays above 1 for every η > 1 exactly when 1/√2 < a < √2 (seed 004 eq. 24).
+            // η* stays above 1 for every η > 1 exactly when 1/√2 < a < √2 (Xu et al. 2011 eq. 24).
             (
                 "eccentricity",
                 e,
@@ -288,7 +288,7 @@ impl Marschner2003 {
         &self.params
     }
 
-    /// S of R, TT and TRT (DESIGN.md §3 units, see the module documentation).
+    /// S of R, TT and TRT (docs/conventions.md §3 units, see the module documentation).
     fn lobe_values(&self, wi: FiberAngles, wo: FiberAngles) -> [DVec3; 3] {
         let theta_h = 0.5 * (wi.theta + wo.theta);
         let theta_d = 0.5 * (wo.theta - wi.theta);
@@ -372,7 +372,7 @@ impl GaussianLobe {
 // The cubic deflection and its roots
 
 /// Φ̂(p, γ) = (6pc/π − 2)γ − (8pc/π³)γ³ + pπ with c = asin(1/η′) (Marschner 2003's cubic
-/// approximation, seed 003 "Finding γ_i"):
+/// approximation, Marschner et al. 2003 "Finding γ_i"):
 /// the exact Φ = 2pγ_t − 2γ + pπ with γ_t replaced by the cubic through γ_t(0) = 0,
 /// γ_t(±π/2) = ±c and dγ_t/dγ(±π/2) = 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -488,7 +488,7 @@ impl Interface {
         }
     }
 
-    /// A(p, h) at h = sin γ_i (seed 003 "Finding A", with DESIGN.md §8's transmittance; T^p
+    /// A(p, h) at h = sin γ_i (Marschner et al. 2003 "Finding A", with docs/conventions.md §8's transmittance; T^p
     /// as one exponential of the p segments' summed path).
     fn attenuation(&self, p: u32, gamma_i: f64) -> DVec3 {
         let f = fresnel_oblique(self.eta_perp, self.eta_par, gamma_i);
@@ -507,7 +507,7 @@ impl Interface {
     }
 }
 
-/// N_p(φ) = Σ A(p, h) / |2 dΦ̂/dh| over every root (seed 003 "Finding N_p").
+/// N_p(φ) = Σ A(p, h) / |2 dΦ̂/dh| over every root (Marschner et al. 2003 "Finding N_p").
 fn azimuthal(p: u32, interface: &Interface, phi: f64) -> DVec3 {
     let deflection = interface.deflection(p);
     deflection
@@ -588,7 +588,7 @@ fn azimuthal_trt(interface: &Interface, params: &MarschnerParams, phi: f64) -> D
     smooth + glint * interface.attenuation(2, caustic.gamma_c)
 }
 
-/// η*(φ_h) of an elliptical fiber (seed 004 eq. 24, after Marschner 2003):
+/// η*(φ_h) of an elliptical fiber (Xu et al. 2011 eq. 24, after Marschner 2003):
 /// η*₁ = 2(η − 1)a² − η + 2, η*₂ = 2(η − 1)a⁻² − η + 2,
 /// η* = ½((η*₁ + η*₂) + cos(2φ_h)(η*₁ − η*₂)), with 2φ_h = φ_i + φ_o. A circle (a = 1) gives η.
 pub fn eta_star(eta: f64, eccentricity: f64, phi_sum: f64) -> f64 {
@@ -1094,7 +1094,7 @@ mod tests {
 
     #[test]
     fn eccentricity_one_is_circular_and_other_values_change_trt_only() {
-        // seed 004 eq. 24 at η = 1.55, a = 0.9: η*₁ = 1.341, η*₂ = 1.80802.
+        // Xu et al. 2011 eq. 24 at η = 1.55, a = 0.9: η*₁ = 1.341, η*₂ = 1.80802.
         assert!((eta_star(1.55, 0.9, 0.0) - 1.341).abs() < 1e-12);
         assert!((eta_star(1.55, 0.9, PI) - (1.1 / 0.81 + 0.45)).abs() < 1e-12);
         assert_eq!(eta_star(1.55, 1.0, 0.7), 1.55);

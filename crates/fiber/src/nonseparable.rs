@@ -1,4 +1,4 @@
-//! The fiber model with non-separable lobes (seed 000 §2.2–2.5) and its fixed-point importance
+//! The fiber model with non-separable lobes (d'Eon et al. 2014 §2.2–2.5) and its fixed-point importance
 //! sampling (§3).
 //!
 //! R, TT and TRT keep the azimuthal terms N_p of d'Eon 2011 (eq. 4) but their longitudinal
@@ -8,7 +8,7 @@
 //! were. Like d'Eon 2011 the model conserves energy (each M integrates to 1) and is not
 //! reciprocal.
 //!
-//! Erratum: seed 000 §2.4 prints D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The
+//! Erratum: d'Eon et al. 2014 §2.4 prints D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The
 //! first-order derivatives it gives in §2.2, dx_TT/dα₁,₂ = ηz′ − z, lead instead to
 //! D_TT = 2(ηz′ − z) / cos θ_d, which agrees with eq. 6's convention for R (per-axis Beckmann
 //! slope deviation β/√2) and with a numerical derivative of the rotation sequence; that is the
@@ -25,12 +25,12 @@ use crate::nusselt;
 use crate::params::{FiberParams, ParamError};
 use std::f64::consts::PI;
 
-/// Fixed-point iterations per sample unless set otherwise (seed 000 Figure 7 uses 6).
+/// Fixed-point iterations per sample unless set otherwise (d'Eon et al. 2014 Figure 7 uses 6).
 pub const DEFAULT_ITERATIONS: u32 = 6;
 /// Change in θ_o (radians) below which the fixed-point iteration counts as converged.
 const CONVERGED: f64 = 1e-6;
 
-/// The non-separable fiber model of seed 000.
+/// The non-separable fiber model of d'Eon et al. 2014.
 #[derive(Clone, Debug)]
 pub struct NonSeparable {
     params: FiberParams,
@@ -70,7 +70,7 @@ impl NonSeparable {
     /// The longitudinal lobe of mode p for light at θ_i leaving at azimuth φ.
     ///
     /// Widths, and the offset h that TT's cone depends on, are evaluated at the specular cone's
-    /// difference angle θ_d* = −θ_i rather than at the θ_d of the outgoing direction (seed 000
+    /// difference angle θ_d* = −θ_i rather than at the θ_d of the outgoing direction (d'Eon et al. 2014
     /// writes θ_d): then M is a normalised density in θ_o for every φ and the model conserves
     /// energy, where the per-direction θ_d loses up to 17 % at grazing incidence (albedo 0.83
     /// at β = 0.3, θ_i = 1.0; 0.87 at β = 0.04, θ_i = 1.4, measured with `furnace::albedo`).
@@ -175,14 +175,14 @@ impl FiberModel for NonSeparable {
     /// The density the sampling procedure is built to realise: Σ_p M_p N_p with A replaced by
     /// the lobe-selection probability. R, TRT, TRRT and the remainder realise it exactly (their
     /// M does not depend on φ, or their N not on θ_o); TT's M depends on φ while its N depends
-    /// on θ_d, so the iteration realises it only up to the residual of seed 000 Appendix A,
+    /// on θ_d, so the iteration realises it only up to the residual of d'Eon et al. 2014 Appendix A,
     /// −(∂P_M/∂φ)(∂P_N/∂θ). The gap is measured in `tests/nonseparable_sampling.rs`.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
         self.density(wi, wo, Weighting::Selection).total().x
     }
 }
 
-/// θ_cone of R (seed 000 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)).
+/// θ_cone of R (d'Eon et al. 2014 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)).
 pub fn cone_r(theta_i: f64, alpha: f64, phi: f64) -> f64 {
     let (sa, ca) = alpha.sin_cos();
     let x =
@@ -190,12 +190,12 @@ pub fn cone_r(theta_i: f64, alpha: f64, phi: f64) -> f64 {
     -x.clamp(-1.0, 1.0).asin()
 }
 
-/// v_R = 2β²(1 − h²) = 2β² cos²(φ/2) (seed 000 eq. 6).
+/// v_R = 2β²(1 − h²) = 2β² cos²(φ/2) (d'Eon et al. 2014 eq. 6).
 pub fn variance_r(beta: f64, phi: f64) -> f64 {
     2.0 * (beta * (0.5 * phi).cos()).powi(2)
 }
 
-/// θ_cone of TT (seed 000 eq. 7) through the Nusselt rotations, with every tilt α; where the
+/// θ_cone of TT (d'Eon et al. 2014 eq. 7) through the Nusselt rotations, with every tilt α; where the
 /// path is totally internally reflected (|x_TT| > 1) the cone is −sign(θ_i) π/2 (§2.4).
 pub fn cone_tt(theta_i: f64, alpha: f64, eta: f64, h: f64) -> f64 {
     let incident = (theta_i.sin(), h * theta_i.cos());
@@ -207,7 +207,7 @@ pub fn cone_tt(theta_i: f64, alpha: f64, eta: f64, h: f64) -> f64 {
     }
 }
 
-/// θ_cone of TRT (seed 000 eq. 8), evaluated at h = 0.
+/// θ_cone of TRT (d'Eon et al. 2014 eq. 8), evaluated at h = 0.
 pub fn cone_trt(theta_i: f64, alpha: f64, eta: f64) -> f64 {
     let x = nusselt::exit_trt([alpha; 3], eta, (theta_i.sin(), 0.0));
     if x.abs() > 1.0 {
@@ -217,7 +217,7 @@ pub fn cone_trt(theta_i: f64, alpha: f64, eta: f64) -> f64 {
     }
 }
 
-/// v_TT = (½ β D_TT)², D_TT = 2(ηz′ − z)/cos θ_d with x = sin θ_d, y = h cos θ_d (seed 000
+/// v_TT = (½ β D_TT)², D_TT = 2(ηz′ − z)/cos θ_d with x = sin θ_d, y = h cos θ_d (d'Eon et al. 2014
 /// §2.4, corrected as the module docs explain).
 pub fn variance_tt(beta: f64, eta: f64, theta_d: f64, h: f64) -> f64 {
     let (x, c) = theta_d.sin_cos();
@@ -229,7 +229,7 @@ pub fn variance_tt(beta: f64, eta: f64, theta_d: f64, h: f64) -> f64 {
     (0.5 * beta * d).powi(2)
 }
 
-/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (seed 000 §2.5).
+/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
     let (s, c) = theta_d.sin_cos();
     let d = (-2.0 * c + 4.0 * eta * (1.0 - s * s / (eta * eta)).max(0.0).sqrt()) / c.max(1e-6);
@@ -300,7 +300,7 @@ mod tests {
         }
     }
 
-    /// Seed 000 §2.2: the width is β/√2 (the per-axis Beckmann slope deviation, as eq. 6
+    /// d'Eon et al. 2014 §2.2: the width is β/√2 (the per-axis Beckmann slope deviation, as eq. 6
     /// implies for R) times the norm of the exit angle's derivatives in the tilts.
     #[test]
     fn tt_width_is_the_first_order_spread_of_the_exit_angle() {
@@ -342,14 +342,14 @@ mod tests {
 
     #[test]
     fn total_internal_reflection_sends_the_tt_cone_to_the_pole() {
-        // Seed 000 §2.4: with a 2° tilt no TT energy leaves a smooth fiber for θ_i < −1.1.
+        // d'Eon et al. 2014 §2.4: with a 2° tilt no TT energy leaves a smooth fiber for θ_i < −1.1.
         let alpha = 2f64.to_radians();
         let grazing = cone_tt(-1.3, alpha, 1.55, 0.0);
         let cone = cone_tt(-1.3, -alpha, 1.55, 0.0);
         assert!(grazing == 0.5 * PI || cone == 0.5 * PI, "{grazing} {cone}");
     }
 
-    /// Seed 000 §3: the fixed-point samples follow the model only up to Appendix A's residual.
+    /// d'Eon et al. 2014 §3: the fixed-point samples follow the model only up to Appendix A's residual.
     /// Measured total-variation distances between 2¹⁹ samples and the reported density, over
     /// θ_i × β × α: within 0.005 of the noise floor of the same number of exact draws (0.006 to
     /// 0.012 here), asserted within 0.01; the mean iteration count stays at most 3 (the paper

@@ -1,4 +1,4 @@
-//! The tabulated fast path for the azimuthal terms of d'Eon 2011 (seed 000 eq. 4): N_p built
+//! The tabulated fast path for the azimuthal terms of d'Eon 2011 (d'Eon et al. 2014 eq. 4): N_p built
 //! once per parameter set over (θ_i, |θ_d|, |φ|), read back by trilinear interpolation, as
 //! production renderers do instead of integrating over h at every evaluation.
 //!

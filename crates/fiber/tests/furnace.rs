@@ -4,7 +4,7 @@
 //!
 //! There the non-separable TT lobe is not exactly normalised: its M depends on φ (through the
 //! offset h that φ selects) while its N depends on θ_o (through η′(θ_d)), so ∫∫ M N is Ā only
-//! to second order. That coupling is what makes seed 000's fixed-point sampling necessary; it
+//! to second order. That coupling is what makes d'Eon et al. 2014's fixed-point sampling necessary; it
 //! costs up to 1.04 % of the energy (β = 0.3, θ_i = 1.0; 0.6 % at β = 0.15, θ_i = 1.2, measured
 //! with `cuticle furnace --model nonseparable`), and the test holds it to that.
 //! The grid runs on the tabulated fast path (whose error against direct quadrature the table's

@@ -1,6 +1,6 @@
 //! Per-strand appearance: what a fiber scattering model needs to shade one strand.
 //!
-//! Units follow DESIGN.md §5: σ_a per unit fiber radius, β (longitudinal roughness) unitless,
+//! Units follow docs/conventions.md §5: σ_a per unit fiber radius, β (longitudinal roughness) unitless,
 //! the scale tilt α in degrees, η the index of refraction of the fiber.
 
 use serde::{Deserialize, Serialize};

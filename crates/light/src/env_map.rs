@@ -8,7 +8,7 @@ use crate::latlong::{
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-/// An equirectangular environment map (+y up, DESIGN.md §4 layout).
+/// An equirectangular environment map (+y up, docs/conventions.md §4 layout).
 #[derive(Clone, Debug)]
 pub struct EnvMap {
     width: usize,

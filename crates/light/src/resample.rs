@@ -63,7 +63,7 @@ fn column_overlaps(from: usize, to: usize) -> Overlaps {
 }
 
 /// Row overlaps weighted by solid angle: the part of input row k inside an output row counts
-/// sin θ_top − sin θ_bottom of that part (DESIGN.md §4 pixel solid angle).
+/// sin θ_top − sin θ_bottom of that part (docs/conventions.md §4 pixel solid angle).
 fn row_overlaps(from: usize, to: usize) -> Overlaps {
     overlaps(from, to, |y| -(PI / 2.0 - PI * y).sin())
 }

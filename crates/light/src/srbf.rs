@@ -1,5 +1,5 @@
 //! Spherical radial basis functions (spherical Gaussians) as lights:
-//! G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²), seed 004 eq. 1 and Table 1, with RGB coefficient L_j.
+//! G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²), Xu et al. 2011 eq. 1 and Table 1, with RGB coefficient L_j.
 //! Writing κ = 2/λ² (the "sharpness"), G = exp(κ(ω·ω_j − 1)), and the closed forms follow from
 //! ∫_{S²} exp(k ω·μ) dω = 4π sinh(k)/k.
 
@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// One SRBF light: L_j G(ω; ω_j, λ_j) (seed 004 eq. 1).
+/// One SRBF light: L_j G(ω; ω_j, λ_j) (Xu et al. 2011 eq. 1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SrbfLight {
     /// Unit centre ω_j (world space, +y up).
@@ -50,7 +50,7 @@ impl SrbfLight {
         sharpness_of(self.bandwidth as f64)
     }
 
-    /// G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²) for a unit ω (seed 004 eq. 1), evaluated as
+    /// G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²) for a unit ω (Xu et al. 2011 eq. 1), evaluated as
     /// exp(−κ‖ω − ω_j‖²/2) (equal for unit vectors): ω·ω_j − 1 cancels catastrophically for
     /// narrow lobes (κ ~ 10⁵ for a sun one pixel wide turns an f32 direction's rounding into
     /// percent errors), the chord does not. Exactly 0 below e⁻⁷⁰⁰.
@@ -139,7 +139,7 @@ pub(crate) fn sphere_integral(kappa: f64) -> f64 {
     }
 }
 
-/// Σ_j L_j G_j(ω): the radiance a set of SRBF lights gives direction `dir` (seed 004 eq. 1).
+/// Σ_j L_j G_j(ω): the radiance a set of SRBF lights gives direction `dir` (Xu et al. 2011 eq. 1).
 pub fn evaluate_lights(lights: &[SrbfLight], dir: DVec3) -> DVec3 {
     lights.iter().map(|l| l.radiance(dir)).sum()
 }

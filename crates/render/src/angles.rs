@@ -47,17 +47,17 @@ pub fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
     s * s * (3.0 - 2.0 * s)
 }
 
-/// η′ = √(η² − sin²θ_d)/cos θ_d (seed 004 Table 1).
+/// η′ = √(η² − sin²θ_d)/cos θ_d (Xu et al. 2011 Table 1).
 pub fn eta_prime(eta: f64, theta_d: f64) -> f64 {
     cuticle_fiber::bravais::eta_perp(eta, theta_d)
 }
 
-/// σ′_a = σ_a/√(1 − sin²θ_d/η²) (seed 004 Table 1).
+/// σ′_a = σ_a/√(1 − sin²θ_d/η²) (Xu et al. 2011 Table 1).
 pub fn sigma_prime(sigma_a: f64, eta: f64, theta_d: f64) -> f64 {
     sigma_a / cuticle_fiber::bravais::cos_theta_t(eta, theta_d).max(1e-6)
 }
 
-/// Φ(p, h) = 2p asin(h/η′) − 2 asin h + pπ (seed 004 eq. 8).
+/// Φ(p, h) = 2p asin(h/η′) − 2 asin h + pπ (Xu et al. 2011 eq. 8).
 pub fn deflection(p: u32, h: f64, eta_prime: f64) -> f64 {
     cuticle_fiber::bravais::azimuthal_deflection(p, h, eta_prime)
 }

@@ -1,5 +1,5 @@
-//! The averaged scattering functions of dual scattering (Zinke et al. 2008 §4; seed 004 §4.3),
-//! tabulated over θ_d × absorption and rebuilt whenever a hair parameter changes (seed 004 §5:
+//! The averaged scattering functions of dual scattering (Zinke et al. 2008 §4; Xu et al. 2011 §4.3),
+//! tabulated over θ_d × absorption and rebuilt whenever a hair parameter changes (Xu et al. 2011 §5:
 //! "the 1D textures are computed and updated on the fly").
 //!
 //! For one absorption channel, the forward and backward attenuations of mode p are the shares

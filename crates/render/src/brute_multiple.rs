@@ -1,5 +1,5 @@
 //! Multiple scattering of the brute-force reference: the dual-scattering terms of
-//! [`crate::dual_scattering`] (Zinke et al. 2008; seed 004 §4.3) for directional lights, from
+//! [`crate::dual_scattering`] (Zinke et al. 2008; Xu et al. 2011 §4.3) for directional lights, from
 //! the exact functions instead of circular Gaussians.
 //!
 //! A directional light k (angles θ_k, φ_k in the fiber frame, power E_k = L Δω, direct

@@ -1,4 +1,4 @@
-//! The azimuthal functions as circular Gaussians (seed 004 §4.2.1, §4.2.3, §4.2.4), for one
+//! The azimuthal functions as circular Gaussians (Xu et al. 2011 §4.2.1, §4.2.3, §4.2.4), for one
 //! absorption channel at one (η, θ_d):
 //! - N_R as the Schlick polynomial Σ_k C_k(θ_d, η) |cos^k(φ/2)| (eq. 13);
 //! - N_TT ≈ b_tt g^c(φ; π, λ_tt), b_tt = N_TT(π), λ_tt from the energy (eqs. 16–19);
@@ -25,7 +25,7 @@ impl Lobe {
         self.weight * cg::eval(phi, self.centre, self.bandwidth)
     }
 
-    /// ∫ g^c(φ′; 0, λ′) · (this lobe at δ − φ′) dφ′ (seed 004 eq. 12).
+    /// ∫ g^c(φ′; 0, λ′) · (this lobe at δ − φ′) dφ′ (Xu et al. 2011 eq. 12).
     pub fn convolve(&self, lambda_light: f64, delta: f64) -> f64 {
         if self.weight == 0.0 {
             return 0.0;

@@ -1,4 +1,4 @@
-//! Multiple scattering by dual scattering under SRBF lights (seed 004 §4.3, Zinke et al. 2008).
+//! Multiple scattering by dual scattering under SRBF lights (Xu et al. 2011 §4.3, Zinke et al. 2008).
 //!
 //! Each light j of energy E_j = L_j ∫G_j dω reaches a point two ways: unscattered with share T̃
 //! (single scattering's, [`crate::single_scattering`]) and forward-scattered with share
@@ -10,7 +10,7 @@
 //!   Gaussians and the half-circle tables ([`crate::half_circle`]);
 //! - the local term (eqs. 29–31), d_b times ℳ^L = (1/cos θ_j) ∫ g^u(θ_i; θ_j, σ) ½M_b(θ_h)
 //!   (cos²θ_i/cos²θ_d) Ā_b 𝒩^L dθ_i, where ½M_b is the unit normal density in θ_i of mean
-//!   2Δ̄_b − θ_o and deviation 2σ̄_b (as ½M_p is for α_p, β_p: seed 004 eq. 7) and 𝒩^L the
+//!   2Δ̄_b − θ_o and deviation 2σ̄_b (as ½M_p is for α_p, β_p: Xu et al. 2011 eq. 7) and 𝒩^L the
 //!   overlap of the light's azimuthal spread with s_b = 1/π on the backward half circle around
 //!   φ_o: (π − |δ|)/π² for the scattered light, P(λ′, δ)/π for the direct light (which Zinke's
 //!   F_direct also back-scatters, with σ = λ_j/√2).

@@ -1,4 +1,4 @@
-//! The exact azimuthal functions the circular Gaussians approximate (seed 004 eqs. 8–10):
+//! The exact azimuthal functions the circular Gaussians approximate (Xu et al. 2011 eqs. 8–10):
 //! N_t(η, θ_d, φ) = Σ_h ½ |dΦ/dh|⁻¹ A_t(θ_d, h) over every h ∈ (−1, 1) with Φ(p, h) ≡ φ, with the
 //! exact deflection Φ, the oblique Fresnel factor and T = exp(−2σ′_a √(1 − h²/η′²)). Used by the
 //! tests and by nothing in the hot path.
@@ -6,7 +6,7 @@
 use crate::angles::{deflection, deflection_slope, eta_prime, sigma_prime, wrap_pi};
 use crate::fresnel::oblique;
 
-/// A_t(θ_d, h) of mode p (0 = R, 1 = TT, 2 = TRT) for one absorption channel (seed 004 eq. 10).
+/// A_t(θ_d, h) of mode p (0 = R, 1 = TT, 2 = TRT) for one absorption channel (Xu et al. 2011 eq. 10).
 pub fn attenuation(p: u32, eta: f64, theta_d: f64, sigma_a: f64, h: f64) -> f64 {
     let f = oblique(eta, theta_d, h);
     if p == 0 {
@@ -20,13 +20,13 @@ pub fn attenuation(p: u32, eta: f64, theta_d: f64, sigma_a: f64, h: f64) -> f64 
     (1.0 - f).powi(2) * f.powi(p as i32 - 1) * t.powi(p as i32)
 }
 
-/// T(σ′_a, h) = exp(−2σ′_a √(1 − h²/η′²)) (seed 004 §4.1).
+/// T(σ′_a, h) = exp(−2σ′_a √(1 − h²/η′²)) (Xu et al. 2011 §4.1).
 pub fn transmittance(sigma_prime: f64, eta_prime: f64, h: f64) -> f64 {
     let s = (h / eta_prime).powi(2);
     (-2.0 * sigma_prime * (1.0 - s).max(0.0).sqrt()).exp()
 }
 
-/// N_t(η, θ_d, φ) by root finding on a fine grid of h (seed 004 eq. 9).
+/// N_t(η, θ_d, φ) by root finding on a fine grid of h (Xu et al. 2011 eq. 9).
 pub fn azimuthal(p: u32, eta: f64, theta_d: f64, sigma_a: f64, phi: f64) -> f64 {
     let ep = eta_prime(eta, theta_d);
     roots(p, ep, phi)

@@ -1,5 +1,5 @@
 //! Half-circle averages of the exact azimuthal functions, for the brute-force reference's global
-//! multiple scattering: seed 004 eq. 28,
+//! multiple scattering: Xu et al. 2011 eq. 28,
 //! 𝒩^G_p(δ, θ_d) = (1/π) ∫_{δ−π/2}^{δ+π/2} N_p(θ_d, φ) dφ,
 //! with the exact N_p of eqs. 8–10 ([`crate::exact_azimuthal`]) where the SRBF path uses its
 //! circular-Gaussian fits ([`crate::half_circle`]). By the change of variable φ = Φ(p, h) of

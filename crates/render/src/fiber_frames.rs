@@ -1,6 +1,6 @@
 //! The fiber frame at each point: u the strand tangent, v the part of the outward direction
 //! from the origin (the head's centre in procedural grooms) normal to u, so that an elliptical
-//! fiber's axes (seed 004 eq. 24, through φ_h) keep one orientation relative to the scalp.
+//! fiber's axes (Xu et al. 2011 eq. 24, through φ_h) keep one orientation relative to the scalp.
 
 use cuticle_fiber::FiberFrame;
 use cuticle_groom::Groom;

@@ -1,4 +1,4 @@
-//! Forward scattering along a light's shadow path (Zinke et al. 2008 §4.1; seed 004 eqs. 3, 5).
+//! Forward scattering along a light's shadow path (Zinke et al. 2008 §4.1; Xu et al. 2011 eqs. 3, 5).
 //!
 //! Sparse sampling of the hair volume: the deep opacity map of [`crate::shadow`] already gives,
 //! for every light and visible point, the optical depth n = −ln T̃ in front of the point, the

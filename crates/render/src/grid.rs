@@ -1,5 +1,5 @@
 //! A regular 2D grid of small fixed-size vectors with bilinear lookup: the storage of the
-//! precomputed tables (seed 004 §5 stores them as 2D textures read with hardware filtering).
+//! precomputed tables (Xu et al. 2011 §5 stores them as 2D textures read with hardware filtering).
 
 /// `nx × ny` nodes of `[f64; N]` over `[x0, x1] × [y0, y1]`, clamped at the edges.
 #[derive(Clone, Debug)]

@@ -1,5 +1,5 @@
 //! Hair scattering parameters: the global set a scene carries (Marschner 2003's Table 1, as
-//! seed 004 edits them), and the per-strand values shading reads, taking each strand's
+//! Xu et al. 2011 edits them), and the per-strand values shading reads, taking each strand's
 //! absorption from the groom's [`Appearance`] unless the scene overrides it.
 //!
 //! The groom's β and α (pbrt-style roughness and a tilt in degrees) are not Marschner's β_R and
@@ -29,13 +29,13 @@ pub struct HairParams {
     pub mu_a: Option<[f64; 3]>,
     /// σ_a of strands whose appearance carries none.
     pub default_mu_a: [f64; 3],
-    /// Eccentricity a (1 for a circular fiber; seed 004 eq. 24).
+    /// Eccentricity a (1 for a circular fiber; Xu et al. 2011 eq. 24).
     pub eccentricity: f64,
     /// Azimutal width w_c of the TRT caustics, degrees (a standard deviation, as Marschner's).
     pub caustic_width_deg: f64,
-    /// Δη′ over which the TRT caustics fade once they merge (seed 004 §4.2.4).
+    /// Δη′ over which the TRT caustics fade once they merge (Xu et al. 2011 §4.2.4).
     pub caustic_fade: f64,
-    /// d_b, the weight of local backward multiple scattering (seed 004 eq. 4; 0.6–0.8).
+    /// d_b, the weight of local backward multiple scattering (Xu et al. 2011 eq. 4; 0.6–0.8).
     pub d_b: f64,
 }
 
@@ -148,7 +148,7 @@ impl HairParams {
 }
 
 /// λ₁ of the TRT caustic Gaussians: a circular Gaussian exp(−x²/λ²) has deviation λ/√2, so
-/// Marschner's glint of deviation w_c is λ₁ = √2 w_c (seed 004 sets λ₁ = w_c in its own
+/// Marschner's glint of deviation w_c is λ₁ = √2 w_c (Xu et al. 2011 sets λ₁ = w_c in its own
 /// bandwidth convention).
 pub fn caustic_bandwidth(fiber: &MarschnerParams) -> f64 {
     SQRT_2 * fiber.caustic_width

@@ -1,4 +1,4 @@
-//! Integrals over a half circle, for the inner integrals of multiple scattering (seed 004
+//! Integrals over a half circle, for the inner integrals of multiple scattering (Xu et al. 2011
 //! eq. 28): 𝒩^G_t(δ, θ_d) = (1/π) ∫_{δ−π/2}^{δ+π/2} N_t(θ_d, φ) dφ. With N_R = Σ_k C_k |cos^k(φ/2)|
 //! (eq. 13) and N_TT, N_TRT sums of weighted circular Gaussians (eqs. 16, 20), this needs only
 //! - W_k(δ) = ∫_{δ−π/2}^{δ+π/2} |cos^k(φ/2)| dφ, k = 0…6, over δ ∈ [0, π] (129 nodes), and

@@ -1,8 +1,8 @@
 //! The TT and TRT circular Gaussians of one fiber, fitted on the spot ([`FittedLobes`], the
 //! reference) or read from a table over θ_d ([`LobeTable`]) that is rebuilt whenever a hair
-//! parameter changes — seed 004 §5 likewise updates its 1D textures "on the fly" — so that
+//! parameter changes — Xu et al. 2011 §5 likewise updates its 1D textures "on the fly" — so that
 //! shading interpolates the fits of [`crate::cg_lobes`] instead of redoing them at every
-//! quadrature sample. Eccentric fibers add an η̄* axis to the TRT table (seed 004 eq. 26).
+//! quadrature sample. Eccentric fibers add an η̄* axis to the TRT table (Xu et al. 2011 eq. 26).
 
 use crate::absorption_axis;
 use crate::cg_lobes::{Geometry, Lobe, TrtShape, trt_fit, tt_fit};
@@ -13,7 +13,7 @@ use cuticle_fiber::marschner2003::MarschnerParams;
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// N_TT of the three colour channels: one circular Gaussian each, centred at π (seed 004 eq. 16).
+/// N_TT of the three colour channels: one circular Gaussian each, centred at π (Xu et al. 2011 eq. 16).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TtLobes {
     pub weight: [f64; 3],
@@ -31,7 +31,7 @@ impl TtLobes {
 }
 
 /// N_TRT of the three colour channels in the slots of [`trt_fit`] (glint at +φ*, glint at −φ*,
-/// centre), whose centres the channels share (seed 004 eqs. 20–22).
+/// centre), whose centres the channels share (Xu et al. 2011 eqs. 20–22).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TrtLobes {
     /// The slots' centres: φ*, −φ*, 0.

@@ -1,5 +1,5 @@
 //! The product integral of a 1D Gaussian with a smooth function by piecewise-linear
-//! quadrature (seed 004 §4.2.2): f is sampled at m + 1 points — the two ends ±π/2 and m − 1
+//! quadrature (Xu et al. 2011 §4.2.2): f is sampled at m + 1 points — the two ends ±π/2 and m − 1
 //! points spread uniformly over μ ± (m − 2)λ/2 — and ∫ g · (b_s x + c_s) is exact on each piece.
 
 use crate::angles::{Incident, Outgoing};
@@ -18,7 +18,7 @@ pub struct Window {
 }
 
 impl Window {
-    /// The product of an SRBF's longitudinal Gaussian exp(−(x − θ_j)²/λ²) (seed 004 eq. 11) and
+    /// The product of an SRBF's longitudinal Gaussian exp(−(x − θ_j)²/λ²) (Xu et al. 2011 eq. 11) and
     /// the unit normal density of mean `mean`, deviation `dev`.
     pub fn product(theta_j: f64, lambda: f64, mean: f64, dev: f64) -> Self {
         let va = 0.5 * lambda * lambda;
@@ -156,7 +156,7 @@ const NEGLIGIBLE_SCALE: f64 = 1e-12;
 
 impl Window {
     /// ∫ window · n(θ_i) cos²θ_i / cos²θ_d dθ_i with θ_d = (θ_o − θ_i)/2: the outer integral of
-    /// seed 004 eqs. 11, 27 and 29, whose factor cos²θ_i/cos²θ_d every mode shares. A negligible
+    /// Xu et al. 2011 eqs. 11, 27 and 29, whose factor cos²θ_i/cos²θ_d every mode shares. A negligible
     /// window gives zero, and so does a grazing sample (cos θ_i ≤ 1e-6, where n may not be
     /// defined).
     pub fn integrate_incident(

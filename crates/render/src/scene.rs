@@ -19,7 +19,7 @@ use std::time::Instant;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
-    /// Circular Gaussians against SRBF lights (seed 004).
+    /// Circular Gaussians against SRBF lights (Xu et al. 2011).
     Srbf,
     /// The exact Marschner 2003 model against the environment as directional lights.
     Brute,
@@ -45,7 +45,7 @@ pub struct SceneSpec {
     pub camera: Option<Camera>,
     pub hair: HairParams,
     pub method: Method,
-    /// Segments m of the linear quadrature (seed 004 §4.2.2).
+    /// Segments m of the linear quadrature (Xu et al. 2011 §4.2.2).
     pub quadrature: usize,
     /// Whether to add dual-scattering multiple scattering.
     pub multiple: bool,

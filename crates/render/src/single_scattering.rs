@@ -1,4 +1,4 @@
-//! Single scattering under SRBF lights (seed 004 §4.2): for each light j and mode t,
+//! Single scattering under SRBF lights (Xu et al. 2011 §4.2): for each light j and mode t,
 //! ℳ_t = ∫ g_j(θ_i) ½M_t(θ_h) (cos²θ_i / cos²θ_d) 𝒩_t(λ′_j, φ_o − φ_j, θ_d) dθ_i (eq. 11), the
 //! inner integral 𝒩_t closed-form from the circular Gaussians (eqs. 12–14, 16, 20) and the outer
 //! one by the linear quadrature (§4.2.2); eccentricity through η̄* (eqs. 24–26).
@@ -44,7 +44,7 @@ struct LightAzimuth {
     phi_sum: f64,
 }
 
-/// Radiance L_o toward ω_o = (θ_o, φ_o) from every light (seed 004 eq. 2), with m segments.
+/// Radiance L_o toward ω_o = (θ_o, φ_o) from every light (Xu et al. 2011 eq. 2), with m segments.
 /// Lights of zero L_j T̃_j (a fitted map leaves unused lights with zero coefficient) add
 /// exactly nothing and are skipped.
 pub fn shade<L: AzimuthalLobes>(

@@ -1,4 +1,4 @@
-//! The precomputed tables of seed 004 §5, built once and independent of every hair parameter:
+//! The precomputed tables of Xu et al. 2011 §5, built once and independent of every hair parameter:
 //! - 𝒞_k(λ′, δ) = ∫ |cos^k((δ − φ′)/2)| g^c(φ′; 0, λ′) dφ′, k = 0…6 (eq. 14), stored divided by
 //!   Z(λ′) = ∫ g^c(φ′; 0, λ′) dφ′ (so each entry is a weighted mean of |cos^k|, smooth in ln λ′),
 //!   with ln Z beside it; λ′ ∈ [0.001, 10] logarithmically (128 nodes) × δ ∈ [0, π] (65 nodes,
@@ -12,9 +12,9 @@ use crate::grid::Grid2;
 use cuticle_fiber::special::GaussLegendre;
 use std::f64::consts::PI;
 
-/// Range of λ′ the 𝒞_k table covers (seed 004 §5).
+/// Range of λ′ the 𝒞_k table covers (Xu et al. 2011 §5).
 pub const LAMBDA_RANGE: (f64, f64) = (0.001, 10.0);
-/// Range of η the ℋ tables cover (seed 004 §5).
+/// Range of η the ℋ tables cover (Xu et al. 2011 §5).
 pub const ETA_RANGE: (f64, f64) = (1.0, 10.0);
 /// Largest θ_d the ℋ tables hold; beyond, the edge value is used (cos θ_d < 0.071).
 pub const THETA_D_MAX: f64 = 1.5;
@@ -51,7 +51,7 @@ impl Tables {
         }
     }
 
-    /// 𝒞_k(λ′, δ) for k = 0…6 (seed 004 eq. 14), λ′ clamped to [`LAMBDA_RANGE`].
+    /// 𝒞_k(λ′, δ) for k = 0…6 (Xu et al. 2011 eq. 14), λ′ clamped to [`LAMBDA_RANGE`].
     pub fn cosine(&self, lambda: f64, delta: f64) -> [f64; 7] {
         let v = self.cosine_normalised(lambda, delta);
         let z = v[7].exp();
@@ -65,13 +65,13 @@ impl Tables {
         self.cosine.lookup(l, d)
     }
 
-    /// [ℋ_0, ℋ_2, ℋ_4] of TT at (η, θ_d) (seed 004 eq. 19).
+    /// [ℋ_0, ℋ_2, ℋ_4] of TT at (η, θ_d) (Xu et al. 2011 eq. 19).
     pub fn h_tt(&self, eta: f64, theta_d: f64) -> [f64; 3] {
         self.h_tt
             .lookup(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln(), theta_d.abs())
     }
 
-    /// [ℋ_0, ℋ_2, ℋ_4] of TRT at (η, θ_d) (seed 004 eq. 23).
+    /// [ℋ_0, ℋ_2, ℋ_4] of TRT at (η, θ_d) (Xu et al. 2011 eq. 23).
     pub fn h_trt(&self, eta: f64, theta_d: f64) -> [f64; 3] {
         self.h_trt
             .lookup(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln(), theta_d.abs())

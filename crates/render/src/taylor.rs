@@ -1,4 +1,4 @@
-//! The 4th-order Taylor expansion in h of the internal attenuation (seed 004 eqs. 18, 22):
+//! The 4th-order Taylor expansion in h of the internal attenuation (Xu et al. 2011 eqs. 18, 22):
 //! T^n = exp(−2nσ′ √(1 − h²/η′²)) with s = h²/η′², √(1 − s) = 1 − s/2 − s²/8 + …, so
 //! T^n ≈ e^{−2nσ′} (1 + nσ′ s + (nσ′/4 + (nσ′)²/2) s²) = a₀ + a₂h² + a₄h⁴.
 

@@ -213,7 +213,7 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_narrow_light() {
 /// Under a light of medium width (λ = 0.3) above the hanging hair, shadows of density 1, the
 /// SRBF's multiple scattering is within 5 % of the brute force's in total (measured 0.7 %
 /// above) and its relative RMSE below 0.1 (measured 0.069): the whole dual-scattering path
-/// agrees tightly where a light is narrow enough for its Gaussians. (Seed 004's 1/cos θ_j
+/// agrees tightly where a light is narrow enough for its Gaussians. (Xu et al. 2011's 1/cos θ_j
 /// normalisation gives 0.997 and 0.077 here: it fails only for wide lights, the next test.)
 /// The agreement loosens as the light widens: 0.956 and 0.10 at λ = 0.6, 0.57 at 1.2.
 #[test]
@@ -228,7 +228,7 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_light_on_the_axis() {
 }
 
 /// Under the wide sky light (λ = 1.2) centred on the fibers' axis, shadows of density 1: with
-/// seed 004's 1/cos θ_j normalisation of the spread the SRBF's multiple scattering was twice
+/// Xu et al. 2011's 1/cos θ_j normalisation of the spread the SRBF's multiple scattering was twice
 /// the brute force's in total and its relative RMSE 2.75; with the exact normalisation
 /// ([`cuticle_render::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total between
 /// 0.45 and 0.75 of the brute force's (measured 0.57; 0.89 at density 0.3, where the RMSE is

@@ -112,7 +112,7 @@ impl Tally {
     }
 
     /// The lobe images in S (sr⁻¹): weight per ray traced, divided by each pixel's solid angle
-    /// (DESIGN.md §3–4), so that `LatLongImage::energy` is the lobe's share of the power.
+    /// (docs/conventions.md §3–4), so that `LatLongImage::energy` is the lobe's share of the power.
     pub fn images(&self, rays: u64) -> [LatLongImage; LOBES] {
         std::array::from_fn(|p| self.image(p, rays))
     }

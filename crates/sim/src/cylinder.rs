@@ -5,7 +5,7 @@
 use glam::{DVec2, DVec3};
 
 /// The direction rays travel for incident inclination θ_i and φ_i = 0: −ω_i, where
-/// ω_i = (sin θ_i, cos θ_i, 0) points toward the light (DESIGN.md §2).
+/// ω_i = (sin θ_i, cos θ_i, 0) points toward the light (docs/conventions.md §2).
 pub fn incident_ray(theta_i: f64) -> DVec3 {
     let (s, c) = theta_i.sin_cos();
     DVec3::new(-s, -c, 0.0)
@@ -13,7 +13,7 @@ pub fn incident_ray(theta_i: f64) -> DVec3 {
 
 /// Where the ray at offset h ∈ [−1, 1] first meets the surface: (y, z) = (√(1 − h²), −h), i.e.
 /// at azimuth −γ_i with γ_i = asin h, so that the mirror direction has φ = −2γ_i, the sign of
-/// Bravais' Φ(0, h) (seed 000 eq. 3).
+/// Bravais' Φ(0, h) (d'Eon et al. 2014 eq. 3).
 pub fn entry_point(h: f64) -> DVec2 {
     DVec2::new((1.0 - h * h).max(0.0).sqrt(), -h)
 }
@@ -25,7 +25,7 @@ pub fn macro_normal(p: DVec2) -> DVec3 {
 
 /// The 3D length travelled inside from surface point p along unit direction d (pointing inward)
 /// to the far side: the root t > 0 of |p + t d_yz|² = 1, t = −2 (p·d_yz)/|d_yz|². At offset h
-/// this is the chord 2 cos γ_t / cos θ_t of DESIGN.md §8.
+/// this is the chord 2 cos γ_t / cos θ_t of docs/conventions.md §8.
 pub fn chord(p: DVec2, d: DVec3) -> f64 {
     let dyz = DVec2::new(d.y, d.z);
     -2.0 * p.dot(dyz) / dyz.length_squared()
@@ -46,7 +46,7 @@ mod tests {
     #[test]
     fn chord_matches_the_bravais_length() {
         let (theta_i, eta, h) = (0.6_f64, 1.55_f64, 0.4_f64);
-        // Refract the entry ray exactly at the macro normal and compare with DESIGN.md §8.
+        // Refract the entry ray exactly at the macro normal and compare with docs/conventions.md §8.
         let p = entry_point(h);
         let n = macro_normal(p);
         let i = -incident_ray(theta_i);

@@ -1,7 +1,7 @@
 //! Sweep configurations: the paper's suite, the `small` subset, and JSON files of configs.
 //!
 //! A configuration file is a JSON list of objects with exactly these keys (the `"params"` keys
-//! of `sim.json`, DESIGN.md §5):
+//! of `sim.json`, docs/conventions.md §5):
 //!
 //! ```json
 //! [
@@ -102,7 +102,7 @@ fn product(
     out
 }
 
-/// Seed 000 §2.1's suite: 11 θ_i × 5 α × 14 μ_a × 10 β × 2 η = 15,400 configurations.
+/// d'Eon et al. 2014 §2.1's suite: 11 θ_i × 5 α × 14 μ_a × 10 β × 2 η = 15,400 configurations.
 pub fn paper() -> Vec<SweepConfig> {
     product(
         &[0.0, 0.25, 0.5, 0.75, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.55],

@@ -7,7 +7,7 @@ use thiserror::Error;
 /// The most paths one simulation traces (the fixed-point tallies' headroom, see `accumulate`).
 pub const MAX_RAYS: u64 = 1_000_000_000;
 
-/// One configuration of the rough fiber and the light (seed 000 §2.1).
+/// One configuration of the rough fiber and the light (d'Eon et al. 2014 §2.1).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SimParams {
     /// Incident inclination θ_i in radians, |θ_i| < π/2 (φ_i = 0).

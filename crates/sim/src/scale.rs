@@ -1,10 +1,10 @@
 //! Tilted cuticle scales as a shading frame: the micro-normal distribution is centred on the
-//! macro normal tilted by α along the fiber axis (seed 000 §2.1–2.2).
+//! macro normal tilted by α along the fiber axis (d'Eon et al. 2014 §2.1–2.2).
 
 use glam::{DVec2, DVec3};
 
 /// The tilt, with sin α and cos α precomputed. Positive α tilts the outward normal toward +u,
-/// which is the sign under which a mirror at the tilted normal gives seed 000 §2.3's
+/// which is the sign under which a mirror at the tilted normal gives d'Eon et al. 2014 §2.3's
 /// θ_cone_R = −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tilt {

@@ -14,7 +14,7 @@ use std::time::Instant;
 /// Rays per chunk (and per random stream). Part of the definition of a seed's result.
 pub const CHUNK: u64 = 1 << 16;
 
-/// Lobe names in the order of [`SimResult::lobes`] (DESIGN.md §5).
+/// Lobe names in the order of [`SimResult::lobes`] (docs/conventions.md §5).
 pub const LOBE_NAMES: [&str; LOBES] = ["R", "TT", "TRT", "TRRT", "rest"];
 
 /// The outcome of [`simulate`]. Energies and losses are fractions of the intercepted power, RGB.

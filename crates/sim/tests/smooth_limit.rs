@@ -1,6 +1,6 @@
 //! The smooth limit: at β = 0.0025 and α = 0 the simulator must reproduce the exact
 //! smooth-cylinder energies, A(p, h) averaged over h (Marschner 2003 with the exact 3D Fresnel and
-//! DESIGN.md §8's T = exp(−2 μ_a cos γ_t / cos θ_t)), and put every lobe at θ_o = −θ_i.
+//! docs/conventions.md §8's T = exp(−2 μ_a cos γ_t / cos θ_t)), and put every lobe at θ_o = −θ_i.
 
 use cuticle_sim::{SimParams, SimResult, simulate};
 use glam::DVec3;

@@ -1,5 +1,5 @@
 //! Validation of the fiber models against the Monte Carlo ground truth of `cuticle-sim`
-//! (seed 000 §2.1 and Figure 7).
+//! (d'Eon et al. 2014 §2.1 and Figure 7).
 //!
 //! For a simulated configuration and a model: [`pixel_integral`] renders the model's lobe images
 //! on the simulation's lat-long grid, each pixel the mean of S over the pixel (not S at its

@@ -1,6 +1,6 @@
 //! The per-lobe figures of one model against one simulation (issue 3): relative L1 error
 //! Σ|model − sim| Ω / Σ|sim| Ω, the energy difference ∫ model − ∫ sim, and the error in θ of
-//! the lobe's peak ([`crate::peak`]). Channel means throughout (DESIGN.md §5).
+//! the lobe's peak ([`crate::peak`]). Channel means throughout (docs/conventions.md §5).
 
 use crate::peak::peak_theta_error;
 use cuticle_fiber::LatLongImage;

@@ -1,4 +1,4 @@
-//! A model's lobe images on a lat-long grid (DESIGN.md §4), each pixel the mean of S over the
+//! A model's lobe images on a lat-long grid (docs/conventions.md §4), each pixel the mean of S over the
 //! pixel's solid angle, ∫∫ S cos θ dθ dφ / Ω, so that they compare with the simulator's
 //! histograms bin for bin. At β = 0.02 the TT lobe's width β(η − 1) ≈ 0.011 rad is a third of a
 //! row (π/100), so S at the pixel centre misses or overstates it; a small product
@@ -7,7 +7,7 @@
 //! The rule: in φ, `phi_nodes` points per column everywhere (columns are π/200 wide, and the
 //! azimuthal terms vary slowly on that scale); in θ, `near_nodes` points for the rows within
 //! [`PixelRule::band`] of the specular cone θ_o = −θ_i (where every lobe's cone lies, shifted
-//! by at most (6η − 2)|α| for TRRT, seed 000 §2.2), and `far_nodes` elsewhere, where S is
+//! by at most (6η − 2)|α| for TRRT, d'Eon et al. 2014 §2.2), and `far_nodes` elsewhere, where S is
 //! smooth. The defaults (8, 3, 3) conserve each lobe's energy, as `furnace::albedo` integrates
 //! it independently, to 0.2 % (test `pixel_integral_conserves_energy`).
 

@@ -1,4 +1,4 @@
-//! Comparison sheets like seed 000 Figure 7: images of one grid stacked top to bottom
+//! Comparison sheets like d'Eon et al. 2014 Figure 7: images of one grid stacked top to bottom
 //! (simulation | sampled | evaluated | |difference| | d'Eon 2011), to be tone-mapped with one
 //! white point.
 

@@ -1,4 +1,4 @@
-//! Where the non-separable model beats d'Eon 2011, per lobe: the paper's claim (seed 000,
+//! Where the non-separable model beats d'Eon 2011, per lobe: the paper's claim (d'Eon et al. 2014,
 //! Figure 7) is that its R, TT and TRT lobes follow the simulation more closely whenever the
 //! scales are tilted, except at extreme roughness and grazing θ_i. "Beats" here: a smaller
 //! relative L1 error on the same configuration.

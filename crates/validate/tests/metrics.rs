@@ -108,7 +108,7 @@ fn a_sub_row_shift_of_the_peak_is_found() {
     }
 }
 
-/// Histogram of `n` importance samples of `model`, in the units of S (DESIGN.md §3).
+/// Histogram of `n` importance samples of `model`, in the units of S (docs/conventions.md §3).
 fn sample_histogram(
     model: &dyn FiberModel,
     theta_i: f64,

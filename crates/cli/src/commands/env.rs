@@ -1,6 +1,6 @@
-//! `cuticle env fit`: approximate an environment map by J SRBF lights (seed 004 eq. 1) and write
+//! `cuticle env fit`: approximate an environment map by J SRBF lights (Xu et al. 2011 eq. 1) and write
 //! `lights.json` (what the renderer reads), `fit.png` (the map and its reconstruction side by
-//! side) and `env.json` (every parameter and figure, DESIGN.md §5).
+//! side) and `env.json` (every parameter and figure, docs/conventions.md §5).
 
 use crate::output::OutDir;
 use crate::progress::bar;
@@ -143,7 +143,7 @@ fn lights_json(report: &FitReport, params: &Value) -> Value {
         .collect();
     json!({
         "convention": "world +y up; radiance(w) = sum_j coefficient_j * exp(2 (w . direction_j - 1) / bandwidth_j^2) \
-                       (seed 004 eq. 1), evaluate as exp(-sharpness_j |w - direction_j|^2 / 2)",
+                       (Xu et al. 2011 eq. 1), evaluate as exp(-sharpness_j |w - direction_j|^2 / 2)",
         "lights": lights,
         "relative_l2": report.relative_l2,
         "seconds": report.seconds,

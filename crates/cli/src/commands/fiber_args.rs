@@ -1,4 +1,4 @@
-//! Flags shared by the commands that evaluate a fiber model (DESIGN.md §5), and building the
+//! Flags shared by the commands that evaluate a fiber model (docs/conventions.md §5), and building the
 //! model they name.
 
 use anyhow::{Context, Result, bail};
@@ -48,7 +48,7 @@ pub struct FiberArgs {
     /// Pheomelanin concentration, instead of --mu-a.
     #[arg(long, allow_negative_numbers = true)]
     pub pheomelanin: Option<f64>,
-    /// Fixed-point iterations per sample of the non-separable model (seed 000 uses 6).
+    /// Fixed-point iterations per sample of the non-separable model (d'Eon et al. 2014 uses 6).
     #[arg(long, default_value_t = cuticle_fiber::nonseparable::DEFAULT_ITERATIONS)]
     pub iterations: u32,
     /// Integrate N_p over h at every evaluation instead of reading the table built once per

@@ -1,5 +1,5 @@
-//! `cuticle lobes`: a fiber model's lobes as lat-long images (DESIGN.md §4), and with
-//! `--samples` the histogram of its importance samples beside them, like seed 000 Figure 7.
+//! `cuticle lobes`: a fiber model's lobes as lat-long images (docs/conventions.md §4), and with
+//! `--samples` the histogram of its importance samples beside them, like d'Eon et al. 2014 Figure 7.
 
 use crate::commands::fiber_args::FiberArgs;
 use crate::latlong_io::{LOBE_FILES, png_bytes_with_white, white_point, write_images};

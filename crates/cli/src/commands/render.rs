@@ -1,4 +1,4 @@
-//! `cuticle render`: the hair renderer of seed 004 (crate cuticle-render) on a scene from flags
+//! `cuticle render`: the hair renderer of Xu et al. 2011 (crate cuticle-render) on a scene from flags
 //! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear) and `render.json` with
 //! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
@@ -31,7 +31,7 @@ pub struct Args {
     /// Number J of SRBF lights to fit, or a lights.json from `cuticle env fit`.
     #[arg(long)]
     lights: Option<String>,
-    /// srbf (seed 004) or brute (exact model, 6 n² directional lights).
+    /// srbf (Xu et al. 2011) or brute (exact model, 6 n² directional lights).
     #[arg(long, value_parser = ["srbf", "brute"])]
     method: Option<String>,
     /// Segments m of the linear quadrature.
@@ -293,14 +293,14 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
 /// Whether and how multiple scattering was rendered.
 fn multiple_json(scene: &Scene) -> Value {
     let terms = match scene.spec.method {
-        Method::Srbf => "circular-Gaussian fits against SRBF windows (seed 004 eqs. 27-31)",
+        Method::Srbf => "circular-Gaussian fits against SRBF windows (Xu et al. 2011 eqs. 27-31)",
         Method::Brute => {
             "exact azimuthal functions and Marschner lobes per directional light, integrated numerically"
         }
     };
     json!({
         "enabled": scene.spec.multiple,
-        "model": "dual scattering (Zinke et al. 2008; seed 004 section 4.3)",
+        "model": "dual scattering (Zinke et al. 2008; Xu et al. 2011 section 4.3)",
         "terms": terms,
         "d_b": scene.spec.hair.d_b,
         "d_f": cuticle_render::forward_scattering::DENSITY_FACTOR,

@@ -1,6 +1,6 @@
 //! `cuticle validate`: every simulated configuration of a sweep against each model (issue 3):
 //! `validation.csv` (every configuration, model and lobe), `validation.md` (summary tables and
-//! the per-lobe verdict), `error_vs_theta_i.svg`, comparison sheets like seed 000 Figure 7 in
+//! the per-lobe verdict), `error_vs_theta_i.svg`, comparison sheets like d'Eon et al. 2014 Figure 7 in
 //! `sheets/`, and `validate.json`.
 
 use crate::latlong_io::{png_bytes_with_white, read_exr, white_point};
@@ -111,7 +111,7 @@ fn sheet_indices(len: usize, n: usize) -> Vec<usize> {
 }
 
 /// `sheets/<config>.png`: simulation | sampled | evaluated | |difference| | d'Eon 2011 (totals,
-/// top to bottom, one white point taken from the simulation), as seed 000 Figure 7.
+/// top to bottom, one white point taken from the simulation), as d'Eon et al. 2014 Figure 7.
 fn write_sheet(
     out: &OutDir,
     config: &SimConfig,

@@ -1,4 +1,4 @@
-//! Fitting an environment map with J SRBF lights (seed 004 eq. 1): minimise the solid-angle-weighted
+//! Fitting an environment map with J SRBF lights (Xu et al. 2011 eq. 1): minimise the solid-angle-weighted
 //! squared error Σ_p Δω_p ‖L(ω_p) − Σ_j L_j G(ω_p; ω_j, λ_j)‖² over the sphere, as Tsai & Shih
 //! (2006) and Ren et al. (2010) do.
 //!

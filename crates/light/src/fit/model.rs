@@ -1,4 +1,4 @@
-//! The model the fit adjusts, Σ_j L_j G_j(ω) (seed 004 eq. 1), evaluated over a target: basis
+//! The model the fit adjusts, Σ_j L_j G_j(ω) (Xu et al. 2011 eq. 1), evaluated over a target: basis
 //! values, the weighted sum of squared errors, and the batching the accumulations share.
 //!
 //! A sample that stands for a cell of several pixels is compared with the model's mean over the

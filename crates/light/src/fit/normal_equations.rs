@@ -2,7 +2,7 @@
 //!
 //! Residuals r_pc = √w_p (Σ_j L_jc G_j(ω_p) − L_pc). Per light the unknowns are its three
 //! coefficients and three geometric coordinates: tangent offsets (a, b) of the centre and s = ln κ,
-//! with (G = exp(κ(ω·ω_j − 1)), seed 004 eq. 1)
+//! with (G = exp(κ(ω·ω_j − 1)), Xu et al. 2011 eq. 1)
 //!   ∂G/∂a = κ G (ω·t1),  ∂G/∂b = κ G (ω·t2),  ∂G/∂s = κ G (ω·ω_j − 1),
 //! and for the blurred basis G̃ = r exp(κ'(ω·ω_j − 1)) of [`super::model`] (κ' = κr, r = 1/(1+κβ),
 //! ∂κ'/∂s = κ' r, ∂ln r/∂s = −(1 − r)):
