@@ -2,7 +2,7 @@
 //! hair-parameter edit (absorption changed, tables and shadows kept), reported as medians of
 //! each stage. The command line only builds the scene and prints or records the report.
 
-use crate::renderer::{Renderer, Timings};
+use crate::frame::renderer::{Renderer, Timings};
 use crate::scene::Scene;
 use serde::Serialize;
 

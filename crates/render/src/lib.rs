@@ -11,52 +11,33 @@
 //! of θ_i is the unit normal density of mean 2α_p − θ_o and deviation 2β_p (Xu et al. 2011 eq. 7).
 //! Pixels hold L_o times coverage plus the background for the rest.
 //!
-//! # Where things are
-//! - The frame: [`renderer`] (stages and their timings), [`scene`], [`camera`], [`raster`]
-//!   (supersampled strands), [`shadow`] (deep opacity maps filtered per light).
-//! - Built once: [`tables`] (Xu et al. 2011 §5's 𝒞_k and ℋ_k), [`half_circle`], [`spread`].
-//! - Rebuilt when a hair parameter changes, kept across absorption edits ([`last_built`]):
-//!   [`lobe_table`] (the TT/TRT circular Gaussians of [`cg_lobes`] over θ_d × absorption),
-//!   [`back_scattering_tables`] (Zinke's averages), both on the shared [`absorption_axis`].
-//! - Shading: [`single_scattering`] (eq. 11 with [`quadrature`] and [`circular_gaussian`]),
-//!   [`dual_scattering`] with [`forward_scattering`].
-//! - The reference: [`brute`] and [`brute_multiple`] from the exact functions
-//!   ([`exact_azimuthal`], [`exact_half_circle`]).
+//! # The rooms
+//! - [`scene`]: what a render is of — groom, environment and its SRBF fit, camera
+//!   ([`scene::camera`]), hair parameters ([`scene::hair`]) — from a TOML file and/or flags.
+//! - [`frame`]: the frame's stages and their timings ([`frame::renderer`]): drawing
+//!   ([`frame::raster`]), shadows ([`frame::shadow`]), the fiber frame at each point, shading,
+//!   resolve.
+//! - [`tables`]: the precomputed functions shading reads, built once or when a hair parameter
+//!   changes.
+//! - [`srbf`]: the fast path, Xu et al. 2011's shading against SRBF lights: single scattering
+//!   and dual scattering.
+//! - [`brute`]: the reference twins of [`srbf`]'s files, with matching names, from the exact
+//!   functions against the map as directional lights (`--method brute`).
+//! - [`angles`], [`fresnel`]: the small fiber optics both paths share; [`mod@bench`]: the paper's
+//!   workload timed.
 
-pub mod absorption_axis;
 pub mod angles;
-pub mod back_scattering_tables;
 pub mod bench;
 pub mod brute;
-pub mod brute_multiple;
-pub mod camera;
-pub mod cg_lobes;
-pub mod circular_gaussian;
-pub mod dual_scattering;
-pub mod exact_azimuthal;
-pub mod exact_half_circle;
-pub mod fiber_frames;
-pub mod forward_scattering;
+pub mod frame;
 pub mod fresnel;
-pub mod grid;
-pub mod hair;
-pub mod half_circle;
-pub mod last_built;
-pub mod lobe_table;
-pub mod progress;
-pub mod quadrature;
-pub mod raster;
-pub mod renderer;
 pub mod scene;
-pub mod shadow;
-pub mod single_scattering;
-pub mod spread;
+pub mod srbf;
 pub mod tables;
-pub mod taylor;
 
-pub use camera::Camera;
-pub use hair::HairParams;
-pub use progress::Progress;
-pub use renderer::{Image, Prepared, Renderer, Timings};
+pub use frame::progress::Progress;
+pub use frame::renderer::{Image, Prepared, Renderer, Timings};
+pub use frame::shadow::ShadowOptions;
+pub use scene::camera::Camera;
+pub use scene::hair::HairParams;
 pub use scene::{Method, Scene, SceneError, SceneSpec};
-pub use shadow::ShadowOptions;

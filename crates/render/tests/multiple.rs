@@ -230,7 +230,7 @@ fn srbf_multiple_scattering_matches_brute_force_under_a_light_on_the_axis() {
 /// Under the wide sky light (λ = 1.2) centred on the fibers' axis, shadows of density 1: with
 /// Xu et al. 2011's 1/cos θ_j normalisation of the spread the SRBF's multiple scattering was twice
 /// the brute force's in total and its relative RMSE 2.75; with the exact normalisation
-/// ([`cuticle_render::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total between
+/// ([`cuticle_render::tables::spread`]) the RMSE stays below 0.6 (measured 0.44) and the total between
 /// 0.45 and 0.75 of the brute force's (measured 0.57; 0.89 at density 0.3, where the RMSE is
 /// 0.12). What remains grows with shadow density; reading T_f at θ_j clamped to ±1 and eqs.
 /// 29–31 as printed each changed it by under 2 %, and it vanishes for narrower lights on the

@@ -303,7 +303,7 @@ fn multiple_json(scene: &Scene) -> Value {
         "model": "dual scattering (Zinke et al. 2008; Xu et al. 2011 section 4.3)",
         "terms": terms,
         "d_b": scene.spec.hair.d_b,
-        "d_f": cuticle_render::forward_scattering::DENSITY_FACTOR,
+        "d_f": cuticle_render::srbf::forward_scattering::DENSITY_FACTOR,
     })
 }
 

@@ -1,9 +1,9 @@
 //! Half-circle averages of the exact azimuthal functions, for the brute-force reference's global
 //! multiple scattering: Xu et al. 2011 eq. 28,
 //! 𝒩^G_p(δ, θ_d) = (1/π) ∫_{δ−π/2}^{δ+π/2} N_p(θ_d, φ) dφ,
-//! with the exact N_p of eqs. 8–10 ([`crate::exact_azimuthal`]) where the SRBF path uses its
-//! circular-Gaussian fits ([`crate::half_circle`]). By the change of variable φ = Φ(p, h) of
-//! [`crate::back_scattering_tables`], 𝒩^G_p = (1/π) · ½ ∫ A_p(θ_d, h) dh over the offsets h
+//! with the exact N_p of eqs. 8–10 ([`crate::brute::exact_azimuthal`]) where the SRBF path uses its
+//! circular-Gaussian fits ([`crate::tables::half_circle`]). By the change of variable φ = Φ(p, h) of
+//! [`crate::tables::back_scattering`], 𝒩^G_p = (1/π) · ½ ∫ A_p(θ_d, h) dh over the offsets h
 //! whose exact deflection lands within π/2 of δ: exact through TRT's caustics, where N_p itself
 //! is singular.
 //!
@@ -11,9 +11,9 @@
 //! in the back-scattering tables) over θ_d ∈ [0, 1.5] (48 nodes), x = ln(1 + σ_a/0.02) for
 //! σ_a ∈ [0, 1000] (64) and |δ| ∈ [0, π] (49), and read by trilinear interpolation.
 
-use crate::absorption_axis;
 use crate::angles::{HALF_PI, deflection, eta_prime, sigma_prime, wrap_pi};
-use crate::exact_azimuthal::{attenuation, transmittance};
+use crate::brute::exact_azimuthal::{attenuation, transmittance};
+use crate::tables::absorption_axis;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -177,7 +177,7 @@ impl ExactHalfCircle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact_azimuthal::{azimuthal, energy};
+    use crate::brute::exact_azimuthal::{azimuthal, energy};
 
     /// (1/π) ∫ over [δ − π/2, δ + π/2] of the exact N_p in φ (root finding at each φ:
     /// independent of the change of variable the table uses).

@@ -26,7 +26,7 @@ pub fn eval(c: [f64; 3], h: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact_azimuthal::transmittance;
+    use crate::brute::exact_azimuthal::transmittance;
 
     /// Taylor T against exp over h ∈ [−1, 1] at the paper's Fig. 3(c) absorptions σ′ = 0.2, 0.6,
     /// 1.0 (η′ = 1.55): relative error below 1 %, 3 %, 6 % respectively; and T² likewise with the

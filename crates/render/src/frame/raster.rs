@@ -8,7 +8,7 @@
 //! left visible are shaded (per vertex, interpolated along t), so shading cost follows the
 //! image, not the groom. Rows are split into bands rasterised in parallel.
 
-use crate::camera::{Projected, View};
+use crate::scene::camera::{Projected, View};
 use cuticle_groom::Groom;
 use rayon::prelude::*;
 

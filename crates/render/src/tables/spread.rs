@@ -7,7 +7,7 @@
 //! twice the brute force's in tests/multiple.rs, per-point relative RMSE 2.75). This table holds the exact Z(θ_j, σ) = ∫_{−π/2}^{π/2} N(θ; θ_j, σ) cos θ dθ over the
 //! same interval the shading integrals cover; Z(θ_j, 0) = cos θ_j.
 
-use crate::grid::Grid2;
+use crate::tables::grid::Grid2;
 use cuticle_fiber::special::GaussLegendre;
 use std::f64::consts::{FRAC_PI_2, PI};
 

@@ -7,8 +7,8 @@
 //!
 //! both even in δ and independent of every hair parameter, so built once with the other tables.
 
-use crate::circular_gaussian as cg;
-use crate::grid::Grid2;
+use crate::srbf::circular_gaussian as cg;
+use crate::tables::grid::Grid2;
 use std::f64::consts::PI;
 
 const DELTA_NODES: usize = 129;

@@ -10,7 +10,7 @@
 //! so wide sky lights cost what a sun costs. Optical depth counts projected fiber area per texel
 //! area (a fiber blocks what it covers), T̃ = exp(−depth).
 
-use crate::camera::NEAR;
+use crate::scene::camera::NEAR;
 use cuticle_groom::Groom;
 use glam::DVec3;
 use rayon::prelude::*;

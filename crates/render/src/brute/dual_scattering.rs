@@ -1,22 +1,22 @@
 //! Multiple scattering of the brute-force reference: the dual-scattering terms of
-//! [`crate::dual_scattering`] (Zinke et al. 2008; Xu et al. 2011 §4.3) for directional lights, from
+//! [`crate::srbf::dual_scattering`] (Zinke et al. 2008; Xu et al. 2011 §4.3) for directional lights, from
 //! the exact functions instead of circular Gaussians.
 //!
 //! A directional light k (angles θ_k, φ_k in the fiber frame, power E_k = L Δω, direct
 //! transmittance T̃_k) is an SRBF in the limit λ → 0: E_k stands for L_j ∫G_j dω, and its
 //! longitudinal and azimuthal windows become deltas at θ_k and φ_k. Per channel, with
 //! δ = φ_o − φ_k, θ_d = (θ_o − θ_k)/2 and (s, σ̄_f²) = forward(T̃_k, averages at θ_k)
-//! ([`crate::forward_scattering`]), the light adds E_k times
+//! ([`crate::srbf::forward_scattering`]), the light adds E_k times
 //! - T̃_k d_b Ā_b ½M_b(θ_k) (cos²θ_k / cos²θ_d) 𝟙(|δ| < π/2)/(π cos θ_k), the local term of the
 //!   direct light (eq. 29 without a window: P(λ → 0, δ)/π is Zinke's s_b on the backward half
 //!   circle);
 //!
-//! and, divided by the spread's normalisation Z(θ_k, σ̄_f) ([`crate::spread`]; cos θ_k in
+//! and, divided by the spread's normalisation Z(θ_k, σ̄_f) ([`crate::tables::spread`]; cos θ_k in
 //! Zinke's narrow limit),
 //! - s Σ_p ∫ g^u(θ_i; θ_k, σ̄_f) ½M_p(θ_i) (cos²θ_i / cos²θ_d(θ_i)) 𝒩^G_p(δ, θ_d(θ_i)) dθ_i, the
 //!   global term (eqs. 27–28), with ½M_p the exact Marschner lobe as a density in θ_i (mean
 //!   2α_p − θ_o, deviation 2β_p) and 𝒩^G_p the half-circle average of the exact N_p
-//!   ([`crate::exact_half_circle`]);
+//!   ([`crate::brute::half_circle`]);
 //! - s d_b Ā_b ((π − |δ|)/π²) ∫ g^u(θ_i; θ_k, σ̄_f) ½M_b(θ_i) (cos²θ_i / cos²θ_d(θ_i)) dθ_i, the
 //!   local term of the forward-scattered light (eqs. 29–31),
 //!
@@ -29,11 +29,11 @@
 //! model and the SRBF path.
 
 use crate::angles::{HALF_PI, wrap_pi};
-use crate::back_scattering_tables::BackScatteringTables;
-use crate::brute::LocalDirectional;
-use crate::exact_half_circle::ExactHalfCircle;
-use crate::forward_scattering::{Forward, SELF_CROSSINGS, forward};
-use crate::spread::SpreadNormalisation;
+use crate::brute::half_circle::ExactHalfCircle;
+use crate::brute::single_scattering::LocalDirectional;
+use crate::srbf::forward_scattering::{Forward, SELF_CROSSINGS, forward};
+use crate::tables::back_scattering::BackScatteringTables;
+use crate::tables::spread::SpreadNormalisation;
 use cuticle_fiber::FiberAngles;
 use cuticle_fiber::marschner2003::MarschnerParams;
 use cuticle_fiber::special::{GaussLegendre, normal_pdf};
@@ -53,7 +53,7 @@ pub struct BruteDual<'a> {
     /// 𝒩^G_p of the fibers' η.
     pub half: &'a ExactHalfCircle,
     pub back: &'a BackScatteringTables,
-    /// Z(θ_k, σ̄_f) of the forward-scattered spreads ([`crate::spread`]).
+    /// Z(θ_k, σ̄_f) of the forward-scattered spreads ([`crate::tables::spread`]).
     pub spread: &'a SpreadNormalisation,
     pub d_b: f64,
 }
@@ -212,8 +212,8 @@ impl BruteDual<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact_half_circle::half_average;
-    use crate::hair::HairParams;
+    use crate::brute::half_circle::half_average;
+    use crate::scene::hair::HairParams;
 
     /// Fine midpoint rule over θ_i ∈ [−π/2, π/2].
     fn fine(f: impl Fn(f64) -> f64) -> f64 {

@@ -4,11 +4,11 @@
 //! one by the linear quadrature (§4.2.2); eccentricity through η̄* (eqs. 24–26).
 
 use crate::angles::{Incident, Outgoing};
-use crate::cg_lobes::r_convolved;
-use crate::circular_gaussian::{convolve_sharp, sharpness};
-use crate::lobe_table::{AzimuthalLobes, TrtLobes, TtLobes};
-use crate::quadrature::Window;
-use crate::tables::Tables;
+use crate::srbf::cg_lobes::r_convolved;
+use crate::srbf::circular_gaussian::{convolve_sharp, sharpness};
+use crate::srbf::quadrature::Window;
+use crate::tables::cg_integrals::Tables;
+use crate::tables::lobe_table::{AzimuthalLobes, TrtLobes, TtLobes};
 use cuticle_fiber::marschner2003::MarschnerParams;
 use glam::DVec3;
 
@@ -173,9 +173,9 @@ pub fn eta_star_range(fiber: &MarschnerParams) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::{LocalLight, ShadingFiber, modes, shade};
-    use crate::hair::HairParams;
-    use crate::lobe_table::{FittedLobes, LobeTable};
-    use crate::tables::Tables;
+    use crate::scene::hair::HairParams;
+    use crate::tables::cg_integrals::Tables;
+    use crate::tables::lobe_table::{FittedLobes, LobeTable};
     use cuticle_fiber::marschner2003::MarschnerParams;
     use glam::DVec3;
 

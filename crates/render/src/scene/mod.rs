@@ -4,9 +4,12 @@
 //! Spaces: the groom's (+z up, as procedural grooms and cyHair models) is world space; the
 //! light crate's directions are +y up, turned into world space by [`light_to_world`].
 
-use crate::camera::Camera;
-use crate::hair::HairParams;
-use crate::shadow::ShadowOptions;
+pub mod camera;
+pub mod hair;
+
+use crate::frame::shadow::ShadowOptions;
+use crate::scene::camera::Camera;
+use crate::scene::hair::HairParams;
 use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_light::{EnvMap, FitOptions, SrbfLight, fit_srbf, load_or_default};
@@ -96,7 +99,7 @@ pub enum SceneError {
     #[error("environment: {0}")]
     Light(#[from] cuticle_light::LightError),
     #[error(transparent)]
-    Hair(#[from] crate::hair::HairParamError),
+    Hair(#[from] crate::scene::hair::HairParamError),
     #[error("{0}")]
     Invalid(String),
 }
@@ -121,7 +124,7 @@ impl SceneSpec {
         if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
             return bad("width and height must lie in 1..=16384");
         }
-        if !(2..=crate::quadrature::MAX_SEGMENTS).contains(&self.quadrature) {
+        if !(2..=crate::srbf::quadrature::MAX_SEGMENTS).contains(&self.quadrature) {
             return bad("quadrature (segments m) must lie in 2..=256");
         }
         if !(1..=8).contains(&self.supersampling) {

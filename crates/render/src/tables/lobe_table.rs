@@ -1,14 +1,14 @@
 //! The TT and TRT circular Gaussians of one fiber, fitted on the spot ([`FittedLobes`], the
 //! reference) or read from a table over θ_d ([`LobeTable`]) that is rebuilt whenever a hair
 //! parameter changes — Xu et al. 2011 §5 likewise updates its 1D textures "on the fly" — so that
-//! shading interpolates the fits of [`crate::cg_lobes`] instead of redoing them at every
+//! shading interpolates the fits of [`crate::srbf::cg_lobes`] instead of redoing them at every
 //! quadrature sample. Eccentric fibers add an η̄* axis to the TRT table (Xu et al. 2011 eq. 26).
 
-use crate::absorption_axis;
-use crate::cg_lobes::{Geometry, Lobe, TrtShape, trt_fit, tt_fit};
-use crate::grid::{Cell, Grid2};
-use crate::hair::caustic_bandwidth;
-use crate::tables::Tables;
+use crate::scene::hair::caustic_bandwidth;
+use crate::srbf::cg_lobes::{Geometry, Lobe, TrtShape, trt_fit, tt_fit};
+use crate::tables::absorption_axis;
+use crate::tables::cg_integrals::Tables;
+use crate::tables::grid::{Cell, Grid2};
 use cuticle_fiber::marschner2003::MarschnerParams;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -94,7 +94,7 @@ pub trait AzimuthalLobes {
     fn trt(&self, eta: f64, theta_d: f64) -> TrtLobes;
 }
 
-/// The fits made at each call: exact to [`crate::cg_lobes`], and slow.
+/// The fits made at each call: exact to [`crate::srbf::cg_lobes`], and slow.
 #[derive(Clone, Copy, Debug)]
 pub struct FittedLobes<'a> {
     pub tables: &'a Tables,

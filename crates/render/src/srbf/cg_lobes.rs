@@ -6,10 +6,10 @@
 //!   b₃ g^c(φ; 0, λ′₃) beyond, with λ′₃ blended from λ₁ over Δη′ (§4.2.4).
 
 use crate::angles::{deflection, deflection_slope, eta_prime, sigma_prime, smoothstep, wrap_pi};
-use crate::circular_gaussian as cg;
 use crate::fresnel::{oblique, schlick_f0};
-use crate::tables::Tables;
-use crate::taylor;
+use crate::srbf::circular_gaussian as cg;
+use crate::srbf::taylor;
+use crate::tables::cg_integrals::Tables;
 use std::f64::consts::PI;
 
 /// One weighted circular Gaussian b · g^c(φ; μ, λ).
@@ -249,7 +249,7 @@ pub fn trt_fit(g: &Geometry, sigma_a: f64, shape: TrtShape) -> [Lobe; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact_azimuthal;
+    use crate::brute::exact_azimuthal;
     use std::sync::OnceLock;
 
     fn tables() -> &'static Tables {

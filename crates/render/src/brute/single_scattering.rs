@@ -3,7 +3,7 @@
 //! texel times its solid angle; n = 16 gives the paper's 1536), shaded with the exact
 //! Marschner 2003 model of the fiber crate, L_o = Σ_k E_k T_k S(ω_k, ω_o) cos θ_k / cos θ_o
 //! (the crate's units, see lib.rs), with the same visibility and shadow maps as the SRBF path;
-//! multiple scattering in [`crate::brute_multiple`].
+//! multiple scattering in [`crate::brute::dual_scattering`].
 
 use crate::scene::{Scene, light_to_world};
 use cuticle_fiber::{FiberAngles, FiberFrame, FiberModel, Marschner2003};

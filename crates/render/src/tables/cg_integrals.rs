@@ -6,9 +6,9 @@
 //! - ℋ_k^TT(η, θ_d) = ∫_{−1}^{1} (1 − F)² h^k dh and ℋ_k^TRT(η, θ_d) = ∫_{−1}^{1} (1 − F)² F h^k dh,
 //!   k = 0, 2, 4 (eqs. 19, 23), η ∈ [1, 10] logarithmically (128 nodes) × θ_d ∈ [0, 1.5] (64).
 
-use crate::circular_gaussian as cg;
 use crate::fresnel::oblique;
-use crate::grid::Grid2;
+use crate::srbf::circular_gaussian as cg;
+use crate::tables::grid::Grid2;
 use cuticle_fiber::special::GaussLegendre;
 use std::f64::consts::PI;
 

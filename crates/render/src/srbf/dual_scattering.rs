@@ -1,13 +1,13 @@
 //! Multiple scattering by dual scattering under SRBF lights (Xu et al. 2011 §4.3, Zinke et al. 2008).
 //!
 //! Each light j of energy E_j = L_j ∫G_j dω reaches a point two ways: unscattered with share T̃
-//! (single scattering's, [`crate::single_scattering`]) and forward-scattered with share
-//! d_f (T_f − T̃)⁺ ([`crate::forward_scattering`]), spread by ψ_f = s̃_f g^u(θ_i; θ_j, σ_f)/cos θ_j
+//! (single scattering's, [`crate::srbf::single_scattering`]) and forward-scattered with share
+//! d_f (T_f − T̃)⁺ ([`crate::srbf::forward_scattering`]), spread by ψ_f = s̃_f g^u(θ_i; θ_j, σ_f)/cos θ_j
 //! (eq. 5), s̃_f = 1/π over the half circle around φ_j and σ_f² = λ_j²/2 + σ̄_f² (the SRBF's
 //! longitudinal variance plus the spread). In the crate's units (lib.rs) they add
 //! - the global term (eqs. 27–28): ℳ^G_t = (1/cos θ_j) ∫ g^u(θ_i; θ_j, σ_f) ½M_t(θ_h)
 //!   (cos²θ_i/cos²θ_d) 𝒩^G_t(φ_o − φ_j, θ_d) dθ_i, with 𝒩^G_t closed form from the circular
-//!   Gaussians and the half-circle tables ([`crate::half_circle`]);
+//!   Gaussians and the half-circle tables ([`crate::tables::half_circle`]);
 //! - the local term (eqs. 29–31), d_b times ℳ^L = (1/cos θ_j) ∫ g^u(θ_i; θ_j, σ) ½M_b(θ_h)
 //!   (cos²θ_i/cos²θ_d) Ā_b 𝒩^L dθ_i, where ½M_b is the unit normal density in θ_i of mean
 //!   2Δ̄_b − θ_o and deviation 2σ̄_b (as ½M_p is for α_p, β_p: Xu et al. 2011 eq. 7) and 𝒩^L the
@@ -16,7 +16,7 @@
 //!   F_direct also back-scatters, with σ = λ_j/√2).
 //!
 //! Where the paper divides by cos θ_j (the narrow limit of the spread's normalisation) we divide
-//! by the exact Z(θ_j, σ) of [`crate::spread`]: cos θ_j overstated a wide sky above hanging hair
+//! by the exact Z(θ_j, σ) of [`crate::tables::spread`]: cos θ_j overstated a wide sky above hanging hair
 //! twice over against the brute force.
 //!
 //! Ā_b, Δ̄_b, σ̄_b are taken at the θ_d of the light's centre, (θ_o − θ_j)/2 (eqs. 29–31 as
@@ -26,19 +26,19 @@
 //! here (Zinke's model is for circular fibers). Channels share one σ_f, the mean of theirs
 //! weighted by their scattered shares.
 
-use crate::absorption_axis;
 use crate::angles::Outgoing;
 use crate::angles::wrap_pi;
-use crate::back_scattering_tables::{Averages, BackScatteringTables};
-use crate::cg_lobes::r_coefficients;
-use crate::circular_gaussian as cg;
-use crate::forward_scattering::forward;
-use crate::half_circle::HalfCircle;
-use crate::lobe_table::AzimuthalLobes;
-use crate::quadrature::Window;
-use crate::shadow::ShadowOptions;
-use crate::single_scattering::{LocalLight, ShadingFiber};
-use crate::spread::SpreadNormalisation;
+use crate::frame::shadow::ShadowOptions;
+use crate::srbf::cg_lobes::r_coefficients;
+use crate::srbf::circular_gaussian as cg;
+use crate::srbf::forward_scattering::forward;
+use crate::srbf::quadrature::Window;
+use crate::srbf::single_scattering::{LocalLight, ShadingFiber};
+use crate::tables::absorption_axis;
+use crate::tables::back_scattering::{Averages, BackScatteringTables};
+use crate::tables::half_circle::HalfCircle;
+use crate::tables::lobe_table::AzimuthalLobes;
+use crate::tables::spread::SpreadNormalisation;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 

@@ -18,10 +18,10 @@
 //! rebuild; entries are the smooth moments [ā_f, ā_b, α_f, α_b, β_f², β_b²], and the three
 //! combinations above are formed after interpolation.
 
-use crate::absorption_axis;
 use crate::angles::{HALF_PI, deflection, eta_prime, wrap_pi};
-use crate::exact_azimuthal::attenuation;
-use crate::grid::Grid2;
+use crate::brute::exact_azimuthal::attenuation;
+use crate::tables::absorption_axis;
+use crate::tables::grid::Grid2;
 use cuticle_fiber::marschner2003::MarschnerParams;
 
 /// Largest θ_d tabulated.
@@ -155,8 +155,8 @@ impl BackScatteringTables {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::exact_azimuthal::azimuthal;
-    use crate::hair::HairParams;
+    use crate::brute::exact_azimuthal::azimuthal;
+    use crate::scene::hair::HairParams;
     use std::f64::consts::PI;
 
     /// ∫ N_p over the forward and backward half circles, integrating the exact N_p in φ
@@ -219,7 +219,7 @@ mod tests {
     fn halves_add_up_to_the_mode_energy() {
         for p in 0..3 {
             let (f, b) = mode_attenuations(p, 1.55, 0.3, 0.4);
-            let e = crate::exact_azimuthal::energy(p, 1.55, 0.3, 0.4);
+            let e = crate::brute::exact_azimuthal::energy(p, 1.55, 0.3, 0.4);
             assert!(
                 (f + b - e).abs() < 0.015 * e.max(1e-3),
                 "mode {p}: {f} + {b} vs {e}"

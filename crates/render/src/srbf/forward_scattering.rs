@@ -1,6 +1,6 @@
 //! Forward scattering along a light's shadow path (Zinke et al. 2008 §4.1; Xu et al. 2011 eqs. 3, 5).
 //!
-//! Sparse sampling of the hair volume: the deep opacity map of [`crate::shadow`] already gives,
+//! Sparse sampling of the hair volume: the deep opacity map of [`crate::frame::shadow`] already gives,
 //! for every light and visible point, the optical depth n = −ln T̃ in front of the point, the
 //! expected number of fibers a ray toward the light crosses (optical depth counts projected
 //! fiber area per texel area). With every crossed fiber at the point's own inclination (forward
@@ -12,7 +12,7 @@
 //! share its texels), so the crossings that scatter are n_f = (n − ½)⁺: a lone strand gets no
 //! global term, as Zinke's binary direct fraction gives it none.
 
-use crate::back_scattering_tables::Averages;
+use crate::tables::back_scattering::Averages;
 
 /// Crossings the opacity map attributes to a point's own strand.
 pub const SELF_CROSSINGS: f64 = 0.5;

@@ -1,0 +1,15 @@
+//! The frame, in the stages `render.json` times ([`renderer`] runs them):
+//! 1. tables, once per process ([`crate::tables`]);
+//! 2. drawing: strands rasterised into the supersampled visibility buffer ([`raster`]), and the
+//!    background;
+//! 3. shadows: T̃ of every light at every visible point, from deep opacity maps filtered to each
+//!    light's bandwidth ([`shadow`]);
+//! 4. shading: L_o at every visible point in its fiber frame ([`fiber_frames`]), by the SRBF
+//!    path ([`crate::srbf`]) or the brute force ([`crate::brute`]), with [`progress`];
+//! 5. resolve: subsamples averaged into pixels.
+
+pub mod fiber_frames;
+pub mod progress;
+pub mod raster;
+pub mod renderer;
+pub mod shadow;
