@@ -59,11 +59,23 @@ pub struct Prepared {
     pub background: Vec<DVec3>,
     /// Visible points, ascending.
     pub points: Vec<u32>,
-    /// Light directions (world, toward the light), bandwidths and coefficients.
-    pub lights: Vec<(DVec3, f64, DVec3)>,
+    /// The lights, in world space.
+    pub lights: Vec<WorldLight>,
     /// T̃ of light j at visible point p: `shadow[p * lights + j]`.
     pub shadow: Vec<f32>,
     pub strand_of_point: Vec<u32>,
+}
+
+/// A light of the frame in world space: an SRBF light, or a directional one (`bandwidth` 0)
+/// of the brute force.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldLight {
+    /// Unit vector toward the light.
+    pub direction: DVec3,
+    /// The SRBF bandwidth λ_j (Xu et al. 2011 eq. 1); 0 for a directional light.
+    pub bandwidth: f64,
+    /// L_j of an SRBF light, or the power E_k of a directional one.
+    pub radiance: DVec3,
 }
 
 /// The renderer: its tables, built once, and the lobe table of the last hair parameters.
@@ -138,7 +150,11 @@ impl Renderer {
             Method::Srbf => srbf_lights(scene),
             Method::Brute => brute::directional_lights(scene, spec.brute_grid)
                 .into_iter()
-                .map(|Directional { direction, power }| (direction, 0.0, power))
+                .map(|Directional { direction, power }| WorldLight {
+                    direction,
+                    bandwidth: 0.0,
+                    radiance: power,
+                })
                 .collect(),
         };
         let shadow = shadows_of_lit(scene, &points, &lights);
@@ -199,8 +215,8 @@ impl Renderer {
                     .lights
                     .iter()
                     .map(|l| Directional {
-                        direction: l.0,
-                        power: l.2,
+                        direction: l.direction,
+                        power: l.radiance,
                     })
                     .collect(),
                 dual: back
@@ -338,8 +354,7 @@ struct SrbfFrame<'a> {
     tables: &'a Tables,
     lobes: &'a LobeTable,
     dual: Option<Dual<'a>>,
-    /// World direction, λ_j and L_j of each light.
-    lights: &'a [(DVec3, f64, DVec3)],
+    lights: &'a [WorldLight],
     shadows: ShadowOptions,
     m: usize,
 }
@@ -356,12 +371,12 @@ impl SrbfFrame<'_> {
         let ao = point.frame.angles(point.toward_eye);
         local.clear();
         local.extend(self.lights.iter().map(|l| {
-            let a = point.frame.angles(l.0);
+            let a = point.frame.angles(l.direction);
             LocalLight {
                 theta: a.theta,
                 phi: a.phi,
-                bandwidth: l.1,
-                radiance: l.2,
+                bandwidth: l.bandwidth,
+                radiance: l.radiance,
             }
         }));
         lit.clear();
@@ -409,12 +424,12 @@ impl BruteFrame<'_> {
 /// T̃ of every light at every point (`[p * lights + j]`), with opacity maps built only for
 /// lights that carry light: a fitted map leaves some SRBF coefficients zero, and their T̃
 /// (left at 1) is never read.
-fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[(DVec3, f64, DVec3)]) -> Vec<f32> {
+fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f32> {
     let lit: Vec<usize> = (0..lights.len())
-        .filter(|&j| lights[j].2 != DVec3::ZERO)
+        .filter(|&j| lights[j].radiance != DVec3::ZERO)
         .collect();
-    let dirs: Vec<DVec3> = lit.iter().map(|&j| lights[j].0).collect();
-    let widths: Vec<f64> = lit.iter().map(|&j| lights[j].1).collect();
+    let dirs: Vec<DVec3> = lit.iter().map(|&j| lights[j].direction).collect();
+    let widths: Vec<f64> = lit.iter().map(|&j| lights[j].bandwidth).collect();
     let compact = transmittance(&scene.groom, points, &dirs, &widths, &scene.spec.shadows);
     let mut out = vec![1.0f32; points.len() * lights.len()];
     for (row, compact_row) in out
@@ -428,17 +443,15 @@ fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[(DVec3, f64, DVec3)])
     out
 }
 
-/// The SRBF lights in world space: (direction, λ_j, L_j).
-fn srbf_lights(scene: &Scene) -> Vec<(DVec3, f64, DVec3)> {
+/// The SRBF lights in world space.
+fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
     scene
         .lights
         .iter()
-        .map(|l| {
-            (
-                light_to_world(l.centre()),
-                l.bandwidth as f64,
-                l.coefficient.as_dvec3(),
-            )
+        .map(|l| WorldLight {
+            direction: light_to_world(l.centre()),
+            bandwidth: l.bandwidth as f64,
+            radiance: l.coefficient.as_dvec3(),
         })
         .collect()
 }
