@@ -3,6 +3,7 @@
 
 mod commands;
 mod latlong_io;
+mod memory;
 mod output;
 mod progress;
 mod svg_plot;
@@ -57,7 +58,31 @@ fn main() {
         Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {
-        eprintln!("error: {err:#}");
+        eprintln!("error: {}", one_line(&err));
         std::process::exit(1);
     }
+}
+
+/// The error and its causes on one line, each cause once: a message that already quotes its
+/// cause (as `#[error("…: {source}")]` does) does not repeat it, and a cause spread over lines
+/// (a parser's excerpt) is joined.
+fn one_line(err: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in err.chain() {
+        let text = cause
+            .to_string()
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        if text.is_empty() || line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
 }

@@ -31,6 +31,7 @@ pub mod model;
 pub mod nonseparable;
 pub mod nusselt;
 pub mod params;
+pub mod ranges;
 pub mod special;
 pub mod table;
 #[cfg(test)]
@@ -44,3 +45,4 @@ pub use marschner2003::Marschner2003;
 pub use model::{FiberModel, FiberSample};
 pub use nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
+pub use ranges::{Range, RangeError};

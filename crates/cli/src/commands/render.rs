@@ -6,6 +6,7 @@
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result};
+use cuticle_fiber::ranges::CountRange;
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
@@ -75,8 +76,9 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args)?;
+    let scene = load_within_memory(spec, lights)?;
+    let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
-    let scene = Scene::load(spec, lights)?;
     eprintln!(
         "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}",
         scene.groom.strand_count(),
@@ -93,7 +95,7 @@ pub fn run(args: Args) -> Result<()> {
     };
     let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
     progress.finish_and_clear();
-    let out = OutDir::create(&args.out)?;
+    check_finite(&image)?;
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
     out.write("image.exr", &exr_bytes(&image)?)?;
@@ -108,7 +110,7 @@ pub fn run(args: Args) -> Result<()> {
         "multiple_scattering": multiple_json(&scene),
         "seconds": seconds_json(&timings),
     });
-    out.write_json("render.json", &record)?;
+    out.finish(record)?;
     println!(
         "{}: {} visible points shaded in {:.2} s; frame {:.2} s (drawing {:.2}, shadows {:.2}, shading {:.2}, resolve {:.2}; tables {:.2}, fit {:.2})",
         args.out.display(),
@@ -142,7 +144,7 @@ pub struct BenchArgs {
     width: Option<usize>,
     #[arg(long)]
     height: Option<usize>,
-    /// Frames timed for each median.
+    /// Frames timed for each median (1 to 1000).
     #[arg(long, default_value_t = 3)]
     frames: usize,
     /// Output folder.
@@ -156,8 +158,10 @@ pub fn bench(command: Bench) -> Result<()> {
     args.strands.into_iter().for_each(|v| spec.strands = v);
     args.width.into_iter().for_each(|v| spec.width = v);
     args.height.into_iter().for_each(|v| spec.height = v);
+    FRAMES.check_usize(args.frames)?;
+    let scene = load_within_memory(spec, None)?;
+    let out = OutDir::create(&args.out, "bench")?;
     let renderer = Renderer::new();
-    let scene = Scene::load(spec, None)?;
     eprintln!(
         "bench: {} strands, {} SRBF lights, {}x{}, {} frames",
         scene.groom.strand_count(),
@@ -167,10 +171,43 @@ pub fn bench(command: Bench) -> Result<()> {
         args.frames
     );
     let report = cuticle_render::bench::run(&renderer, &scene, args.frames);
-    let out = OutDir::create(&args.out)?;
-    out.write_json("bench.json", &bench_json(&scene, &renderer, &report)?)?;
+    out.finish(bench_json(&scene, &renderer, &report)?)?;
     print_bench(&report);
     Ok(())
+}
+
+/// Frames one benchmark times.
+const FRAMES: CountRange = CountRange {
+    name: "frames",
+    min: 1,
+    max: 1000,
+};
+
+/// The scene, loaded once what it needs in memory is known to fit (checked before the groom
+/// is made, and again before drawing, with the groom's real size).
+fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
+    let threads = rayon::current_num_threads();
+    spec.validate()?;
+    let available = crate::memory::available();
+    spec.memory_need(lights.as_ref().map(Vec::len), threads)
+        .check(available)?;
+    let scene = Scene::load(spec, lights)?;
+    scene.memory_need(threads).check(available)?;
+    Ok(scene)
+}
+
+/// Refuses to write an image holding NaN or infinite pixels (a fault of the renderer: every
+/// input that could cause one is refused before rendering).
+fn check_finite(image: &Image) -> Result<()> {
+    match image.pixels.iter().position(|p| !p.is_finite()) {
+        Some(k) => anyhow::bail!(
+            "the renderer made a non-finite pixel ({}, {}) = {}; nothing was written",
+            k % image.width,
+            k / image.width,
+            image.pixels[k]
+        ),
+        None => Ok(()),
+    }
 }
 
 /// bench.json: the scene's parameters and the median seconds.
@@ -277,8 +314,21 @@ fn parse_rgb(s: &str) -> Result<[f64; 3]> {
     }
 }
 
-/// The `"lights"` array of a lights.json written by `cuticle env fit`.
+/// The largest lights file read (512 lights take under 200 kB).
+const MAX_LIGHTS_FILE: u64 = 4 << 20;
+
+/// The `"lights"` array of a lights.json written by `cuticle env fit`, each light checked.
 fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
+    let size = std::fs::metadata(path)
+        .with_context(|| format!("cannot read {}", path.display()))?
+        .len();
+    if size > MAX_LIGHTS_FILE {
+        anyhow::bail!(
+            "{} is {size} bytes, more than a lights file of {} lights takes",
+            path.display(),
+            cuticle_light::MAX_LIGHTS
+        );
+    }
     let text =
         std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let value: Value =
@@ -287,7 +337,10 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
         .get("lights")
         .cloned()
         .with_context(|| format!("{} has no \"lights\" array", path.display()))?;
-    Ok(serde_json::from_value(lights)?)
+    let lights: Vec<SrbfLight> = serde_json::from_value(lights)
+        .with_context(|| format!("{}: \"lights\" is not a list of lights", path.display()))?;
+    cuticle_light::validate_lights(&lights).with_context(|| path.display().to_string())?;
+    Ok(lights)
 }
 
 /// Whether and how multiple scattering was rendered.

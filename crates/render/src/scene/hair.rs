@@ -10,6 +10,7 @@ use cuticle_fiber::absorption::mu_a_from_melanin;
 use cuticle_fiber::marschner2003::{
     DEFAULT_ALPHA_R_DEG, DEFAULT_BETA_R_DEG, DEFAULT_CAUSTIC_WIDTH_DEG, MarschnerParams,
 };
+use cuticle_fiber::ranges::{self, End, Range, RangeError};
 use cuticle_groom::{Absorption, Appearance};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -26,8 +27,10 @@ pub struct HairParams {
     /// Longitudinal width β_R, degrees (β_TT = β_R/2, β_TRT = 2β_R).
     pub beta_r_deg: f64,
     /// Absorption σ_a per unit radius for every strand; `None` takes each strand's own.
+    #[serde(deserialize_with = "crate::scene::maybe_three")]
     pub mu_a: Option<[f64; 3]>,
     /// σ_a of strands whose appearance carries none.
+    #[serde(deserialize_with = "crate::scene::exactly_three")]
     pub default_mu_a: [f64; 3],
     /// Eccentricity a (1 for a circular fiber; Xu et al. 2011 eq. 24).
     pub eccentricity: f64,
@@ -56,68 +59,29 @@ impl Default for HairParams {
     }
 }
 
-/// Why a parameter set cannot be rendered.
-#[derive(Clone, Debug, thiserror::Error, PartialEq)]
-#[error("hair parameter {name} = {value} is outside {range}")]
-pub struct HairParamError {
-    pub name: &'static str,
-    pub value: f64,
-    pub range: &'static str,
-}
+/// d_b, the weight of local backward multiple scattering (Xu et al. 2011 eq. 4).
+pub const D_B: Range = Range {
+    name: "d_b",
+    min: End::Closed(0.0),
+    max: End::Closed(1.0),
+    unit: "",
+};
 
 impl HairParams {
-    /// Checks every field against the ranges the model and tables cover.
-    pub fn validate(&self) -> Result<(), HairParamError> {
-        let mu = self.mu_a.unwrap_or(self.default_mu_a);
-        let checks = [
-            (
-                "eta",
-                self.eta,
-                self.eta > 1.0 && self.eta <= 10.0,
-                "(1, 10]",
-            ),
-            (
-                "alpha_r_deg",
-                self.alpha_r_deg,
-                self.alpha_r_deg.abs() <= 20.0,
-                "[-20, 20]",
-            ),
-            (
-                "beta_r_deg",
-                self.beta_r_deg,
-                self.beta_r_deg > 0.0 && self.beta_r_deg <= 45.0,
-                "(0, 45]",
-            ),
-            (
-                "mu_a",
-                mu[0].min(mu[1]).min(mu[2]),
-                mu.iter().all(|c| (0.0..=1000.0).contains(c)),
-                "[0, 1000]",
-            ),
-            (
-                "eccentricity",
-                self.eccentricity,
-                (0.5..=2.0).contains(&self.eccentricity),
-                "[0.5, 2]",
-            ),
-            (
-                "caustic_width_deg",
-                self.caustic_width_deg,
-                self.caustic_width_deg > 0.0 && self.caustic_width_deg <= 90.0,
-                "(0, 90]",
-            ),
-            (
-                "caustic_fade",
-                self.caustic_fade,
-                self.caustic_fade > 0.0 && self.caustic_fade <= 2.0,
-                "(0, 2]",
-            ),
-            ("d_b", self.d_b, (0.0..=1.0).contains(&self.d_b), "[0, 1]"),
-        ];
-        match checks.into_iter().find(|c| !(c.1.is_finite() && c.2)) {
-            Some((name, value, _, range)) => Err(HairParamError { name, value, range }),
-            None => Ok(()),
+    /// Checks every field against the ranges the model and tables cover: the fiber's through
+    /// [`MarschnerParams::validate`], the one check every consumer of these parameters shares
+    /// (the SRBF path, the brute force and the exact model), and `d_b`. Each fault names its
+    /// scene key (`hair.` keys, flags of the same name) and value.
+    pub fn validate(&self) -> Result<(), RangeError> {
+        if let Some(mu) = self.mu_a {
+            ranges::MU_A.check_all(&mu)?;
         }
+        ranges::MU_A
+            .named("default_mu_a")
+            .check_all(&self.default_mu_a)?;
+        self.fiber(None).validate()?;
+        D_B.check(self.d_b)?;
+        Ok(())
     }
 
     /// The shading parameters of a strand with this appearance: the exact model's parameters,

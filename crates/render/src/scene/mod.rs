@@ -6,15 +6,17 @@
 
 pub mod camera;
 pub mod hair;
+pub mod memory;
 
 use crate::frame::shadow::ShadowOptions;
 use crate::scene::camera::Camera;
 use crate::scene::hair::HairParams;
+use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
-use cuticle_groom::procedural::{GroomParams, Preset, generate};
-use cuticle_light::{EnvMap, FitOptions, SrbfLight, fit_srbf, load_or_default};
+use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, MIN_STRANDS, Preset, generate};
+use cuticle_light::{EnvMap, FitOptions, MAX_LIGHTS, SrbfLight, fit_srbf, load_or_default};
 use glam::{DVec3, Vec3};
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -87,21 +89,106 @@ pub enum SceneError {
     #[error("cannot read scene file {path}: {source}")]
     Read {
         path: PathBuf,
+        #[source]
         source: std::io::Error,
     },
-    #[error("scene file {path}: {source}")]
+    /// One line: where in the file, and what is wrong there.
+    #[error("scene file {path}{at}: {message}")]
     Toml {
         path: PathBuf,
-        source: toml::de::Error,
+        at: String,
+        message: String,
     },
     #[error("groom: {0}")]
     Groom(String),
     #[error("environment: {0}")]
     Light(#[from] cuticle_light::LightError),
-    #[error(transparent)]
-    Hair(#[from] crate::scene::hair::HairParamError),
+    #[error("hair parameter {0}")]
+    Hair(RangeError),
+    #[error("scene {0}")]
+    Range(#[from] RangeError),
     #[error("{0}")]
     Invalid(String),
+    #[error(transparent)]
+    Memory(#[from] memory::MemoryError),
+}
+
+/// Image width and height, pixels.
+pub const SIZE: CountRange = CountRange {
+    name: "width/height",
+    min: 1,
+    max: 16384,
+};
+/// Subsamples per pixel along each axis.
+pub const SUPERSAMPLING: CountRange = CountRange {
+    name: "supersampling",
+    min: 1,
+    max: 8,
+};
+/// Segments m of the linear quadrature (Xu et al. 2011 §4.2.2).
+pub const QUADRATURE: CountRange = CountRange {
+    name: "quadrature",
+    min: 2,
+    max: crate::srbf::quadrature::MAX_SEGMENTS as u64,
+};
+/// n of the brute force's 6 n² directional lights.
+pub const BRUTE_GRID: CountRange = CountRange {
+    name: "brute_grid",
+    min: 1,
+    max: 64,
+};
+/// Strands of a preset groom.
+pub const STRANDS: CountRange = CountRange {
+    name: "strands",
+    min: MIN_STRANDS as u64,
+    max: MAX_STRANDS as u64,
+};
+/// Number J of SRBF lights fitted to the map (or read from a lights file).
+pub const LIGHTS: CountRange = CountRange {
+    name: "lights",
+    min: 1,
+    max: MAX_LIGHTS as u64,
+};
+/// Texels along each side of an opacity map.
+pub const SHADOW_RESOLUTION: CountRange = CountRange {
+    name: "shadows.resolution",
+    min: 8,
+    max: 4096,
+};
+/// The opacity maps' optical-depth multiplier (1 physical, 0 no shadows).
+pub const SHADOW_DENSITY: Range = Range {
+    name: "shadows.density",
+    min: End::Closed(0.0),
+    max: End::Closed(1000.0),
+    unit: "",
+};
+/// The transmittance below which a light adds no direct light.
+pub const SHADOW_CUTOFF: Range = Range {
+    name: "shadows.cutoff",
+    min: End::Closed(0.0),
+    max: End::Closed(0.01),
+    unit: "",
+};
+/// Rotation of the environment about the up axis, degrees.
+pub const ENV_ROTATE_DEG: Range = Range {
+    name: "env_rotate_deg",
+    min: End::Closed(-360.0),
+    max: End::Closed(360.0),
+    unit: " degrees",
+};
+
+/// `[a, b, c]` and nothing else: serde's fixed-size arrays read the first three numbers of a
+/// longer list and drop the rest without a word.
+pub fn exactly_three<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
+    let values = Vec::<f64>::deserialize(d)?;
+    <[f64; 3]>::try_from(values.as_slice()).map_err(|_| {
+        serde::de::Error::invalid_length(values.len(), &"three numbers [r, g, b] or [x, y, z]")
+    })
+}
+
+/// [`exactly_three`] for an optional key.
+pub fn maybe_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, D::Error> {
+    exactly_three(d).map(Some)
 }
 
 impl SceneSpec {
@@ -111,42 +198,45 @@ impl SceneSpec {
             path: path.into(),
             source,
         })?;
-        toml::from_str(&text).map_err(|source| SceneError::Toml {
+        toml::from_str(&text).map_err(|e| SceneError::Toml {
             path: path.into(),
-            source,
+            at: e
+                .span()
+                .map(|span| line_and_column(&text, span.start))
+                .unwrap_or_default(),
+            message: e.message().trim().replace('\n', "; "),
         })
     }
 
-    /// Checks the numbers that are not checked where they are used.
+    /// Checks every number against its range, each named by its scene key.
     pub fn validate(&self) -> Result<(), SceneError> {
-        self.hair.validate()?;
-        let bad = |m: &str| Err(SceneError::Invalid(m.into()));
-        if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
-            return bad("width and height must lie in 1..=16384");
+        self.hair.validate().map_err(SceneError::Hair)?;
+        SIZE.named("width").check_usize(self.width)?;
+        SIZE.named("height").check_usize(self.height)?;
+        QUADRATURE.check_usize(self.quadrature)?;
+        SUPERSAMPLING.check_usize(self.supersampling)?;
+        BRUTE_GRID.check_usize(self.brute_grid)?;
+        SHADOW_RESOLUTION.check_usize(self.shadows.resolution)?;
+        SHADOW_DENSITY.check(self.shadows.density)?;
+        SHADOW_CUTOFF.check(self.shadows.cutoff)?;
+        LIGHTS.check_usize(self.lights)?;
+        if self.groom.parse::<Preset>().is_ok() {
+            STRANDS.check_usize(self.strands)?;
         }
-        if !(2..=crate::srbf::quadrature::MAX_SEGMENTS).contains(&self.quadrature) {
-            return bad("quadrature (segments m) must lie in 2..=256");
-        }
-        if !(1..=8).contains(&self.supersampling) {
-            return bad("supersampling must lie in 1..=8");
-        }
-        if !(1..=64).contains(&self.brute_grid) {
-            return bad("brute_grid must lie in 1..=64");
-        }
-        if !(8..=4096).contains(&self.shadows.resolution)
-            || self.shadows.density.is_nan()
-            || self.shadows.density < 0.0
-        {
-            return bad("shadow resolution must lie in 8..=4096 and density be ≥ 0");
-        }
-        if !(0.0..=0.01).contains(&self.shadows.cutoff) {
-            return bad("shadow cutoff must lie in [0, 0.01]");
-        }
-        if self.lights == 0 {
-            return bad("lights must be at least 1");
+        ENV_ROTATE_DEG.check(self.env_rotate_deg)?;
+        if let Some(camera) = &self.camera {
+            camera.validate()?;
         }
         Ok(())
     }
+}
+
+/// ` line L column C` of byte `offset` in `text` (1-based).
+fn line_and_column(text: &str, offset: usize) -> String {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    format!(" line {line} column {column}")
 }
 
 /// A loaded scene.
@@ -169,7 +259,11 @@ impl Scene {
     /// the caller from a `lights.json` of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         spec.validate()?;
+        if let Some(lights) = &lights {
+            cuticle_light::validate_lights(lights)?;
+        }
         let groom = load_groom(&spec.groom, spec.strands)?;
+        validate_strands(&spec, &groom)?;
         let env = load_or_default(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
         let (lights, fit_error) = match lights {
@@ -231,6 +325,21 @@ impl Scene {
     pub fn env_radiance(&self, dir: DVec3) -> DVec3 {
         self.env.radiance(world_to_light(dir).as_vec3()).as_dvec3()
     }
+}
+
+/// Every strand's own absorption (from the groom's appearance) within the fiber's ranges, so
+/// shading never meets parameters the exact model refuses.
+fn validate_strands(spec: &SceneSpec, groom: &Groom) -> Result<(), SceneError> {
+    if spec.hair.mu_a.is_some() {
+        return Ok(());
+    }
+    for (s, appearance) in groom.appearance().iter().enumerate() {
+        spec.hair
+            .fiber(Some(appearance))
+            .validate()
+            .map_err(|e| SceneError::Groom(format!("strand {s}'s absorption: {e}")))?;
+    }
+    Ok(())
 }
 
 /// A preset name or a `.hair` path.
