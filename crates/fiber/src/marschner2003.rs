@@ -1196,7 +1196,7 @@ mod tests {
         let bad = FiberParams { eta: 0.9, ..fiber };
         assert!(matches!(
             Marschner2003::from_fiber(&bad),
-            Err(MarschnerError::Fiber(_))
+            Err(e) if e.name == "eta"
         ));
     }
 

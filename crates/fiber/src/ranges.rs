@@ -246,11 +246,12 @@ pub const THETA_I: Range = Range {
 pub const ALPHA_R_DEG: Range = ALPHA_DEG.named("alpha_r_deg");
 
 /// Marschner 2003's longitudinal width β_R, degrees (its Table 1: 5° to 10°). The smallest is
-/// what `Marschner2003::from_fiber` makes of [`MIN_BETA`] (β_R = β/√2) and a little less.
+/// what `Marschner2003::from_fiber` makes of [`MIN_BETA`] (β_R = β/√2) and a little less; the
+/// largest a little above 1 radian, the widest the model is tested at.
 pub const BETA_R_DEG: Range = Range {
     name: "beta_r_deg",
     min: End::Closed(0.004),
-    max: End::Closed(45.0),
+    max: End::Closed(60.0),
     unit: " degrees",
 };
 
@@ -323,7 +324,7 @@ mod tests {
         assert!(ETA.check(1.0).is_err() && ETA.check(10.0).is_ok());
         assert_eq!(
             ECCENTRICITY.to_string(),
-            "(0.70711, 1.41421)",
+            "(0.70711, 1.4142)",
             "five significant digits"
         );
     }

@@ -19,7 +19,7 @@ mod random;
 mod styling;
 
 pub use head::Head;
-pub use params::{GroomParams, MAX_POINTS_PER_STRAND, MAX_STRANDS, MIN_STRANDS};
+pub use params::{GroomParams, MAX_POINTS_PER_STRAND, MAX_STRANDS};
 pub use preset::Preset;
 
 use crate::appearance::Appearance;

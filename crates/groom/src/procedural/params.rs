@@ -44,8 +44,6 @@ pub struct GroomParams {
     pub absorption_variation: f32,
 }
 
-/// Fewest strands a procedural groom may have.
-pub const MIN_STRANDS: usize = 1;
 /// Most strands a procedural groom may have.
 pub const MAX_STRANDS: usize = 2_000_000;
 /// Most points a procedural strand may have.
@@ -58,8 +56,8 @@ impl GroomParams {
             (
                 "strands",
                 self.strands,
-                (MIN_STRANDS..=MAX_STRANDS).contains(&self.strands),
-                "between 1 and 2,000,000",
+                self.strands <= MAX_STRANDS,
+                "at most 2,000,000",
             ),
             (
                 "min_points",

@@ -13,7 +13,7 @@ use crate::scene::camera::Camera;
 use crate::scene::hair::HairParams;
 use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
-use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, MIN_STRANDS, Preset, generate};
+use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
 use cuticle_light::{EnvMap, FitOptions, MAX_LIGHTS, SrbfLight, fit_srbf, load_or_default};
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Deserializer, Serialize};
@@ -137,10 +137,10 @@ pub const BRUTE_GRID: CountRange = CountRange {
     min: 1,
     max: 64,
 };
-/// Strands of a preset groom.
+/// Strands of a preset groom (the groom crate makes empty ones too; a scene renders hair).
 pub const STRANDS: CountRange = CountRange {
     name: "strands",
-    min: MIN_STRANDS as u64,
+    min: 1,
     max: MAX_STRANDS as u64,
 };
 /// Number J of SRBF lights fitted to the map (or read from a lights file).
