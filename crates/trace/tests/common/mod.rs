@@ -66,3 +66,22 @@ pub fn spot_env(toward: DVec3) -> EnvMap {
         Vec3::splat(0.2 + 200.0 * x.exp() as f32)
     })
 }
+
+/// One long straight fiber along x through the origin, radius 0.1.
+pub fn single_fiber() -> Groom {
+    Groom::from_parts(GroomParts {
+        positions: vec![Vec3::new(-50.0, 0.0, 0.0), Vec3::new(50.0, 0.0, 0.0)],
+        thickness: vec![0.2; 2],
+        strand_offsets: vec![0, 2],
+        ..GroomParts::default()
+    })
+    .unwrap()
+}
+
+/// Rays along `dir` meeting the single fiber at offsets uniform across its projected width
+/// (the k-th of n at the k-th stratum's centre, jittered by `jitter`).
+pub fn ray_across_fiber(dir: DVec3, k: usize, n: usize, jitter: f64) -> (DVec3, DVec3) {
+    let across = DVec3::X.cross(dir).normalize();
+    let offset = 0.1 * (-1.0 + 2.0 * (k as f64 + jitter) / n as f64);
+    (across * offset - dir * 10.0, dir)
+}
