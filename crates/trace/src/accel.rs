@@ -14,8 +14,11 @@ use std::time::{Duration, Instant};
 /// Tubes and the BVH over them (none for a groom without segments).
 pub struct Accel {
     tubes: Tubes,
-    /// Tubes in the BVH's leaf order, so a leaf reads them without indirection.
+    /// The tube of each BVH primitive (a piece of it), in the BVH's leaf order, so a leaf
+    /// reads it without indirection.
     ordered: Vec<Tube>,
+    /// The index of each of those tubes in `tubes`.
+    ordered_owner: Vec<u32>,
     bvh: Option<CwBvh>,
     pub build_seconds: f64,
 }
@@ -24,24 +27,26 @@ impl Accel {
     pub fn build(groom: &Groom) -> Self {
         let start = Instant::now();
         let tubes = Tubes::from_groom(groom);
+        let (boxes, owner) = tubes.bounds();
         let bvh = (!tubes.is_empty()).then(|| {
             build_cwbvh(
-                &tubes.bounds(),
+                &boxes,
                 BvhBuildParams::medium_build(),
                 &mut Duration::default(),
             )
         });
-        let ordered = match &bvh {
+        let (ordered, ordered_owner) = match &bvh {
             Some(b) => b
                 .primitive_indices
                 .iter()
-                .map(|&i| tubes.tubes[i as usize])
-                .collect(),
-            None => Vec::new(),
+                .map(|&i| (tubes.tubes[owner[i as usize] as usize], owner[i as usize]))
+                .unzip(),
+            None => (Vec::new(), Vec::new()),
         };
         Self {
             tubes,
             ordered,
+            ordered_owner,
             bvh,
             build_seconds: start.elapsed().as_secs_f64(),
         }
@@ -58,7 +63,7 @@ impl Accel {
         let mut hit = RayHit::none();
         bvh.ray_traverse(ray, &mut hit, |ray, id| self.ordered[id].intersect(ray))
             .then(|| TubeHit {
-                tube: bvh.primitive_indices[hit.primitive_id as usize],
+                tube: self.ordered_owner[hit.primitive_id as usize],
                 t: hit.t,
             })
     }

@@ -22,6 +22,10 @@ use obvhs::ray::Ray;
 
 /// Bends above this angle are cut square rather than mitred.
 pub const MAX_MITRE_BEND_DEG: f32 = 120.0;
+/// Length of a tube's pieces in the BVH, in radii.
+pub const PIECE_OVER_RADIUS: f32 = 16.0;
+/// Most pieces of one tube.
+pub const MAX_PIECES: usize = 16;
 /// Segments shorter than this fraction of their radius are dropped (repeated points).
 const MIN_LENGTH_OVER_RADIUS: f32 = 1e-3;
 
@@ -106,9 +110,22 @@ impl Tubes {
         self.tubes.is_empty()
     }
 
-    /// Bounds of each tube, wide enough for its mitred ends.
-    pub fn bounds(&self) -> Vec<Aabb> {
-        self.tubes.iter().map(Tube::bounds).collect()
+    /// Boxes around pieces of each tube, wide enough for its mitred ends, with the tube each
+    /// bounds. A long thin segment at an angle to the axes fills a small part of one box, so a
+    /// tube is split into pieces about [`PIECE_OVER_RADIUS`] radii long (at most
+    /// [`MAX_PIECES`]): rays that pass near a strand but not through it are culled in the BVH.
+    pub fn bounds(&self) -> (Vec<Aabb>, Vec<u32>) {
+        let (mut boxes, mut owner) = (Vec::new(), Vec::new());
+        for (i, tube) in self.tubes.iter().enumerate() {
+            let r = tube.radius_a.max(tube.radius_b()).max(1e-12);
+            let pieces =
+                ((tube.length / (PIECE_OVER_RADIUS * r)).ceil() as usize).clamp(1, MAX_PIECES);
+            for k in 0..pieces {
+                boxes.push(tube.piece_bounds(k, pieces));
+                owner.push(i as u32);
+            }
+        }
+        (boxes, owner)
     }
 
     /// The fiber frame of a hit of `ray` (world space, f64).
@@ -172,11 +189,15 @@ impl Tube {
         self.radius_a + self.taper * self.length
     }
 
-    fn bounds(&self) -> Aabb {
-        // A mitre of at most 120° reaches r·tan(60°) < 2r beyond the end point.
+    /// The box of piece k of n along the axis. A mitre of at most 120° reaches r·tan(60°) <
+    /// 2r beyond the end points, so the first and last pieces reach 2r past them; every piece
+    /// is padded by 2r across.
+    fn piece_bounds(&self, k: usize, n: usize) -> Aabb {
         let reach = Vec3A::splat(2.0 * self.radius_a.max(self.radius_b()));
-        let b = self.a + self.axis * self.length;
-        Aabb::new(self.a.min(b) - reach, self.a.max(b) + reach)
+        let s0 = self.length * k as f32 / n as f32;
+        let s1 = self.length * (k + 1) as f32 / n as f32;
+        let (p, q) = (self.a + self.axis * s0, self.a + self.axis * s1);
+        Aabb::new(p.min(q) - reach, p.max(q) + reach)
     }
 
     /// The entering hit of `ray` within (tmin, tmax), or infinity.

@@ -41,7 +41,11 @@ fn reflection_leaves_where_the_cylinder_mirrors_it() {
             }
             let out = frame.dir(s.wo);
             let angle = out.dot(mirror).clamp(-1.0, 1.0).acos();
-            assert!(angle < 0.05, "h {}: {angle} rad from the mirror direction", f.h);
+            assert!(
+                angle < 0.05,
+                "h {}: {angle} rad from the mirror direction",
+                f.h
+            );
             checked += 1;
         }
     }

@@ -33,7 +33,12 @@ fn traced(model: Box<dyn FiberModel>, env: &EnvMap, dir: DVec3) -> (f64, f64) {
     traced_with(model, env, dir, Strategy::Mis)
 }
 
-fn traced_with(model: Box<dyn FiberModel>, env: &EnvMap, dir: DVec3, strategy: Strategy) -> (f64, f64) {
+fn traced_with(
+    model: Box<dyn FiberModel>,
+    env: &EnvMap,
+    dir: DVec3,
+    strategy: Strategy,
+) -> (f64, f64) {
     let groom = single_fiber();
     let accel = Accel::build(&groom);
     let sampler = EnvSampler::new(env);
@@ -112,7 +117,11 @@ fn marschner_one_bounce_matches_the_renderers_integral() {
         let expected = quadrature(&env, &frame, 720, |wi| {
             model.eval(wi, wo).total().x * wi.theta.cos() / wo.theta.cos()
         });
-        let got = traced(Box::new(Marschner2003::new(params).unwrap()), &env, view_dir());
+        let got = traced(
+            Box::new(Marschner2003::new(params).unwrap()),
+            &env,
+            view_dir(),
+        );
         assert_close(&format!("marschner, {name}"), got, expected);
     }
 }

@@ -65,7 +65,10 @@ fn degenerate_input_renders_without_a_panic() {
     let out = trace(&scene(empty, constant_env(0.7), 8, 4, front_camera(8.0)), 2);
     assert!(out.image.pixels.iter().all(|p| (p.x - 0.7).abs() < 1e-6));
     let points = groom(vec![Vec3::ZERO, Vec3::X, Vec3::X], vec![0, 1, 2, 3]);
-    let out = trace(&scene(points, constant_env(0.7), 8, 4, front_camera(8.0)), 2);
+    let out = trace(
+        &scene(points, constant_env(0.7), 8, 4, front_camera(8.0)),
+        2,
+    );
     assert!(out.image.pixels.iter().all(|p| (p.x - 0.7).abs() < 1e-6));
     let black = EnvMap::new(16, 8, vec![Vec3::ZERO; 128]);
     let out = trace(&scene(slab(2, 8, 0.1), black, 8, 4, front_camera(8.0)), 2);

@@ -115,9 +115,9 @@ impl PathArgs {
             TraceModel::Marschner => {
                 StrandModels::marschner(scene).context("Marschner 2003 parameters")
             }
-            TraceModel::Deon2011 => {
-                one(Box::new(DEon2011::new(self.fiber(&scene.spec, self.beta)?)?.tabulated()))
-            }
+            TraceModel::Deon2011 => one(Box::new(
+                DEon2011::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
+            )),
             TraceModel::Nonseparable => one(Box::new(
                 NonSeparable::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
             )),

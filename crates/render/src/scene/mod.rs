@@ -246,8 +246,17 @@ mod tests {
         let env = load_env("constant:0.5,1,2").unwrap();
         assert_eq!(env.radiance(Vec3::Y), Vec3::new(0.5, 1.0, 2.0));
         assert_eq!(load_env("constant:1").unwrap().radiance(Vec3::X), Vec3::ONE);
-        for bad in ["constant:", "constant:1,2", "constant:-1", "constant:nan", "constant:a,b,c"] {
-            assert!(matches!(load_env(bad), Err(SceneError::Invalid(_))), "{bad}");
+        for bad in [
+            "constant:",
+            "constant:1,2",
+            "constant:-1",
+            "constant:nan",
+            "constant:a,b,c",
+        ] {
+            assert!(
+                matches!(load_env(bad), Err(SceneError::Invalid(_))),
+                "{bad}"
+            );
         }
     }
 }
