@@ -18,7 +18,7 @@ use cuticle_render::{Image, Scene, SceneSpec};
 use cuticle_trace::{Accel, PathOptions, StrandModels, Strategy, TraceImage, TraceOptions};
 use glam::DVec3;
 use serde_json::{Value, json};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The models `--model` selects for the path tracer.
@@ -157,7 +157,7 @@ fn load(spec: SceneSpec) -> Result<Scene> {
 }
 
 /// `cuticle render --method path`.
-pub fn run(args: &PathArgs, spec: SceneSpec, out: &PathBuf) -> Result<()> {
+pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
     let options = args.options()?;
     let scene = load(spec)?;
     let models = args.models(&scene)?;

@@ -237,30 +237,6 @@ impl Scene {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn constant_environments_parse_and_bad_ones_are_refused() {
-        let env = load_env("constant:0.5,1,2").unwrap();
-        assert_eq!(env.radiance(Vec3::Y), Vec3::new(0.5, 1.0, 2.0));
-        assert_eq!(load_env("constant:1").unwrap().radiance(Vec3::X), Vec3::ONE);
-        for bad in [
-            "constant:",
-            "constant:1,2",
-            "constant:-1",
-            "constant:nan",
-            "constant:a,b,c",
-        ] {
-            assert!(
-                matches!(load_env(bad), Err(SceneError::Invalid(_))),
-                "{bad}"
-            );
-        }
-    }
-}
-
 /// The environment a scene names: `constant:R,G,B` (or `constant:V`) is a uniform map of that
 /// radiance (each channel finite and ≥ 0); anything else goes to the light crate's
 /// [`load_or_default`].
@@ -310,4 +286,28 @@ pub fn light_to_world(d: DVec3) -> DVec3 {
 /// World direction → light-crate direction, the inverse of [`light_to_world`].
 pub fn world_to_light(d: DVec3) -> DVec3 {
     DVec3::new(d.x, d.z, -d.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_environments_parse_and_bad_ones_are_refused() {
+        let env = load_env("constant:0.5,1,2").unwrap();
+        assert_eq!(env.radiance(Vec3::Y), Vec3::new(0.5, 1.0, 2.0));
+        assert_eq!(load_env("constant:1").unwrap().radiance(Vec3::X), Vec3::ONE);
+        for bad in [
+            "constant:",
+            "constant:1,2",
+            "constant:-1",
+            "constant:nan",
+            "constant:a,b,c",
+        ] {
+            assert!(
+                matches!(load_env(bad), Err(SceneError::Invalid(_))),
+                "{bad}"
+            );
+        }
+    }
 }
