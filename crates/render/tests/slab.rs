@@ -56,12 +56,6 @@ fn crossing_rate(d: DVec3) -> f64 {
 }
 
 impl Slab {
-    /// The depth below the top at which a ray toward the light (from above) crosses `n`
-    /// fibers on average.
-    fn depth_of(&self, n: f64) -> f64 {
-        n * self.light.z / crossing_rate(self.light)
-    }
-
     /// n: the mean crossings of the path from height z toward the light, out of the top or
     /// the bottom.
     fn crossings(&self, z: f64) -> f64 {
@@ -153,14 +147,6 @@ fn wrap(x: f64) -> f64 {
     cuticle_fiber::frame::wrap_pi(x)
 }
 
-/// Where a traced path starts: a fiber at a fixed depth below the top, or the first fiber a
-/// camera ray toward −ω_o meets.
-#[derive(Clone, Copy, Debug)]
-enum Start {
-    Depth(f64),
-    Seen,
-}
-
 /// The depth below the top of the first fiber met by a ray entering the top toward −`wo`,
 /// given a uniform u, or None when the ray leaves through the bottom.
 fn seen_depth(slab: &Slab, wo: DVec3, u: f64) -> Option<f64> {
@@ -168,8 +154,9 @@ fn seen_depth(slab: &Slab, wo: DVec3, u: f64) -> Option<f64> {
     (depth < slab.thickness).then_some(depth)
 }
 
-/// `paths` backward paths from `start`, seen from `wo`, in parallel chunks of fixed seeds.
-fn trace(fiber: &MarschnerParams, slab: &Slab, start: Start, wo: DVec3, paths: usize) -> Traced {
+/// `paths` backward paths from the fibers a camera from `wo` sees first, in parallel chunks
+/// of fixed seeds.
+fn trace(fiber: &MarschnerParams, slab: &Slab, wo: DVec3, paths: usize) -> Traced {
     let model = Marschner2003::new(*fiber).unwrap();
     let chunks = 64;
     let per = paths / chunks;
@@ -180,12 +167,8 @@ fn trace(fiber: &MarschnerParams, slab: &Slab, start: Start, wo: DVec3, paths: u
             let mut acc = [DVec3::ZERO; 5];
             let mut done = 0;
             while done < per {
-                let depth = match start {
-                    Start::Depth(d) => d,
-                    Start::Seen => match seen_depth(slab, wo, uniform(&mut rng)) {
-                        Some(d) => d,
-                        None => continue,
-                    },
+                let Some(depth) = seen_depth(slab, wo, uniform(&mut rng)) else {
+                    continue;
                 };
                 done += 1;
                 let [d, g, o] = path(&model, slab, slab.thickness - depth, wo, &mut rng);
@@ -413,7 +396,7 @@ fn camera() -> DVec3 {
 /// averaged over the fibers the camera sees.
 fn compare(r: &Renderer, mu_a: [f64; 3], slab: &Slab, label: &str) -> (Traced, Rendered, Rendered) {
     let terms = Terms::new(r, fiber(mu_a));
-    let traced = trace(&terms.fiber, slab, Start::Seen, camera(), 96_000);
+    let traced = trace(&terms.fiber, slab, camera(), 96_000);
     let b = terms.seen(slab, camera(), Terms::brute);
     let s = terms.seen(slab, camera(), Terms::srbf);
     report(label, &traced, &b, &s);
