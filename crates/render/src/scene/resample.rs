@@ -11,11 +11,11 @@
 
 use cuticle_groom::{Groom, GroomParts};
 
-/// Longest segment kept whole, as a fraction of the groom's bounding radius: 1/24, about 10
-/// opacity-map texels at the default 256. The built-in groom's segments (about 1/25) stay
-/// whole, so the default scene shades the points it always had; straight.hair's (1/12) are
-/// split in three.
-pub const MAX_SEGMENT: f32 = 1.0 / 24.0;
+/// Longest segment kept whole, as a fraction of the groom's bounding radius: 1/12, about 20
+/// opacity-map texels at the default 256. The built-in groom's segments (up to about 1/16)
+/// stay whole, so the default scene shades the points it always had; straight.hair's
+/// (just over 1/12) are split in two.
+pub const MAX_SEGMENT: f32 = 1.0 / 12.0;
 
 /// `groom` with every segment longer than [`MAX_SEGMENT`] of its bounding radius split into
 /// equal pieces (points, thickness, colour and transparency interpolated linearly; strand
@@ -106,7 +106,7 @@ mod tests {
         // Bounding radius √(0.96² + 0.5²)/2: the 0.5 segment becomes ⌈0.5 / limit⌉ pieces.
         let limit = MAX_SEGMENT * 0.5 * (0.96f32.powi(2) + 0.25).sqrt();
         let pieces = (0.5 / limit).ceil() as usize;
-        assert!(pieces > 10, "{pieces}");
+        assert!(pieces > 5, "{pieces}");
         assert_eq!(g.point_count(), 97 + pieces);
         let t = g.thickness();
         assert!(
@@ -114,7 +114,7 @@ mod tests {
             "{}",
             t[97]
         );
-        // 0.01 apart beside a short strand a unit away (limit ≥ 1.386/2/48): none split.
+        // 0.01 apart beside a short strand a unit away (limit ≥ 1.386/2/12): none split.
         let mut short: Vec<Vec3> = (0..=96)
             .map(|i| Vec3::new(i as f32 * 0.01, 0.0, 0.0))
             .collect();
