@@ -35,6 +35,7 @@ pub mod special;
 pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
+pub mod tilted_attenuation;
 
 pub use deon2011::DEon2011;
 pub use frame::{FiberAngles, FiberFrame, wrap_pi};
