@@ -6,6 +6,7 @@
 
 pub mod camera;
 pub mod hair;
+pub mod resample;
 
 use crate::frame::shadow::ShadowOptions;
 use crate::scene::camera::Camera;
@@ -165,11 +166,12 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Loads the groom and environment and fits the lights, unless `lights` are given (read by
-    /// the caller from a `lights.json` of `cuticle env fit`).
+    /// Loads the groom (its long segments split for shading, [`resample`]) and environment
+    /// and fits the lights, unless `lights` are given (read by the caller from a `lights.json`
+    /// of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         spec.validate()?;
-        let groom = load_groom(&spec.groom, spec.strands)?;
+        let groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
         let env = load_or_default(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
         let (lights, fit_error) = match lights {
