@@ -142,7 +142,7 @@ impl AtScale {
 
     /// From the scale's frame back to the macro-normal's on `inside`'s side of the surface;
     /// `WrongSide` where the direction points through the macro surface.
-    fn to_macro(&self, (x, y): Nusselt, z: f64, inside: bool) -> Result<Nusselt, Blocked> {
+    fn in_macro_frame(&self, (x, y): Nusselt, z: f64, inside: bool) -> Result<Nusselt, Blocked> {
         let turn = if inside { self.alpha } else { -self.alpha };
         let (x, z) = rotate_signed(turn, x, z);
         if z <= 0.0 {
@@ -153,7 +153,7 @@ impl AtScale {
 
     /// The mirror direction (R[α] from outside, R′[α] from inside), on the arriving side.
     pub fn reflect(&self) -> Result<Nusselt, Blocked> {
-        self.to_macro((-self.x, -self.y), self.cos, self.inside)
+        self.in_macro_frame((-self.x, -self.y), self.cos, self.inside)
     }
 
     /// The refracted direction on the far side (T[α] going in, T′[α] going out): the scale's
@@ -166,7 +166,7 @@ impl AtScale {
         if z2 <= 0.0 {
             return Err(Blocked::TotalInternalReflection);
         }
-        self.to_macro((x, y), z2.sqrt(), !self.inside)
+        self.in_macro_frame((x, y), z2.sqrt(), !self.inside)
     }
 }
 

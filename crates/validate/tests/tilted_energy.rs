@@ -187,12 +187,7 @@ fn integration_matches_the_furnace() {
         resolution: 1,
     };
     let furnace = albedo(&model, theta_i, rule).per_lobe;
-    for p in 0..5 {
-        assert!(
-            (ours[p] - furnace.0[p].x).abs() < 1e-3,
-            "lobe {p}: {} vs furnace {}",
-            ours[p],
-            furnace.0[p].x
-        );
+    for (p, (e, f)) in ours.iter().zip(furnace.0).enumerate() {
+        assert!((e - f.x).abs() < 1e-3, "lobe {p}: {e} vs furnace {}", f.x);
     }
 }
