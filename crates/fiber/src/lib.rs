@@ -36,6 +36,7 @@ pub mod special;
 pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
+pub mod tilted_attenuation;
 
 pub use chiang2016::Chiang2016;
 pub use deon2011::DEon2011;
