@@ -6,4 +6,5 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod trace;
 pub mod validate;
