@@ -1,5 +1,6 @@
 //! `cuticle render`: the hair renderer of Xu et al. 2011 (crate cuticle-render) on a scene from flags
-//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear) and `render.json` with
+//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear), `coverage.exr` (each
+//! pixel's hair coverage, the mask `cuticle compare` reads) and `render.json` with
 //! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
 
@@ -10,6 +11,7 @@ use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use exr::prelude::*;
+use glam::DVec3;
 use serde_json::{Value, json};
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
@@ -104,6 +106,10 @@ pub fn run(args: Args) -> Result<()> {
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
     out.write("image.exr", &exr_bytes(&image)?)?;
+    out.write(
+        "coverage.exr",
+        &exr_bytes(&coverage_image(&prepared.coverage))?,
+    )?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
@@ -332,6 +338,19 @@ pub fn seconds_json(t: &Timings) -> Value {
         "resolve": t.resolve,
         "frame": t.drawing + t.shadows + t.shading + t.resolve,
     })
+}
+
+/// Each pixel's hair coverage (the fraction of its subsamples a strand covers) in all three
+/// channels: the mask `cuticle compare` averages over.
+fn coverage_image(coverage: &cuticle_render::frame::raster::Coverage) -> Image {
+    let (width, height) = (coverage.width, coverage.height);
+    Image {
+        width,
+        height,
+        pixels: (0..width * height)
+            .map(|k| DVec3::splat(coverage.pixel_fraction(k % width, k / width)))
+            .collect(),
+    }
 }
 
 /// Tone-mapped 8-bit sRGB PNG with the environment's exposure.
