@@ -36,6 +36,9 @@ pub struct SceneSpec {
     pub groom: String,
     /// Strands of a preset groom.
     pub strands: usize,
+    /// A per-strand absorption file laid over the groom's own (the JSON sidecar
+    /// `cuticle view` saves with a painted groom: [`cuticle_groom::strand_absorption`]).
+    pub strand_absorption: Option<String>,
     /// `default` (the procedural sky) or an .hdr/.exr lat-long map.
     pub env: String,
     /// Rotation of the environment about the up axis, degrees.
@@ -64,6 +67,7 @@ impl Default for SceneSpec {
         Self {
             groom: "straight".into(),
             strands: Preset::DEFAULT_STRANDS,
+            strand_absorption: None,
             env: "default".into(),
             env_rotate_deg: 0.0,
             lights: 40,
@@ -169,7 +173,12 @@ impl Scene {
     /// the caller from a `lights.json` of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         spec.validate()?;
-        let groom = load_groom(&spec.groom, spec.strands)?;
+        let mut groom = load_groom(&spec.groom, spec.strands)?;
+        if let Some(path) = &spec.strand_absorption {
+            groom = groom
+                .with_strand_absorption(path)
+                .map_err(|e| SceneError::Groom(format!("strand absorption {path}: {e}")))?;
+        }
         let env = load_or_default(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
         let (lights, fit_error) = match lights {
