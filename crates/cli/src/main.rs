@@ -36,6 +36,8 @@ enum Command {
     Env(commands::env::Args),
     /// Render a groom under environment light (Xu et al. 2011's SRBF renderer, or --method brute).
     Render(commands::render::Args),
+    /// The live look-development window: edit the hair, lighting and camera, paint colour onto strands.
+    View(commands::view::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),
     /// Benchmarks: the renderer on the paper's workload (render).
@@ -54,6 +56,7 @@ fn main() {
         Command::Env(args) => commands::env::run(args),
         Command::Render(args) => commands::render::run(args),
         Command::Validate(args) => commands::validate::run(args),
+        Command::View(args) => commands::view::run(args),
         Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {

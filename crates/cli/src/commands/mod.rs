@@ -7,3 +7,4 @@ pub mod render;
 pub mod sim;
 pub mod sweep;
 pub mod validate;
+pub mod view;
