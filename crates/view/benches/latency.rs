@@ -117,7 +117,9 @@ fn main() {
             pheomelanin: 0.2,
         })
     });
-    report("beta_R edit", &|l, k| l.spec.hair.beta_r_deg = 5.0 + k as f64);
+    report("beta_R edit", &|l, k| {
+        l.spec.hair.beta_r_deg = 5.0 + k as f64
+    });
     report("camera orbit", &|l, _| {
         let c = l.spec.camera.expect("a look has a camera");
         l.spec.camera = Some(orbit::orbit(&c, 15.0, 0.0));

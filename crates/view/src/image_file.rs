@@ -11,7 +11,11 @@ pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>, String> {
     let mut img = image::RgbImage::new(image.width as u32, image.height as u32);
     for (k, p) in image.pixels.iter().enumerate() {
         let c = tone.apply(p.as_vec3());
-        img.put_pixel((k % image.width) as u32, (k / image.width) as u32, image::Rgb(c));
+        img.put_pixel(
+            (k % image.width) as u32,
+            (k / image.width) as u32,
+            image::Rgb(c),
+        );
     }
     let mut bytes = Cursor::new(Vec::new());
     img.write_to(&mut bytes, image::ImageFormat::Png)

@@ -3,12 +3,12 @@
 //! time per kind; a newer job of a kind makes the older one's result stale (it is dropped).
 
 use crate::look::Look;
+use cuticle_groom::Groom;
 use cuticle_light::{EnvMap, FitOptions, FitProgress, SrbfLight, fit_srbf_with_progress};
 use cuticle_render::{Scene, SceneSpec};
-use cuticle_groom::Groom;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::mpsc::{Receiver, channel};
-use std::sync::Arc;
 
 /// What a finished job hands back.
 pub enum Loaded {
@@ -44,8 +44,9 @@ impl Job {
             .name("cuticle-view load".into())
             .spawn(move || {
                 let report = |f: f32| p.store(f.clamp(0.0, 1.0).to_bits(), Ordering::Relaxed);
-                let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&report)))
-                    .unwrap_or_else(|_| Err("the load failed unexpectedly".into()));
+                let outcome =
+                    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&report)))
+                        .unwrap_or_else(|_| Err("the load failed unexpectedly".into()));
                 let _ = tx.send(outcome);
                 notify();
             });
@@ -111,32 +112,36 @@ pub fn fit_lights(
     lights: usize,
     notify: impl Fn() + Send + 'static,
 ) -> Job {
-    Job::spawn(format!("fitting {lights} SRBF lights"), notify, move |report| {
-        let map = match current {
-            Some(map) => (*map).clone(),
-            None => cuticle_light::load_or_default(&env).map_err(|e| format!("{env}: {e}"))?,
-        }
-        .with_rotation(rotate_deg.to_radians());
-        let options = FitOptions {
-            lights,
-            ..FitOptions::default()
-        };
-        let mut progress = |p: FitProgress| {
-            if let FitProgress::Iteration {
-                iteration,
-                max_iterations,
-                ..
-            } = p
-            {
-                report(iteration as f32 / max_iterations.max(1) as f32);
+    Job::spawn(
+        format!("fitting {lights} SRBF lights"),
+        notify,
+        move |report| {
+            let map = match current {
+                Some(map) => (*map).clone(),
+                None => cuticle_light::load_or_default(&env).map_err(|e| format!("{env}: {e}"))?,
             }
-        };
-        let fit = fit_srbf_with_progress(&map, &options, &mut progress)
-            .map_err(|e| format!("fit: {e}"))?;
-        Ok(Loaded::Lights {
-            env: Box::new(map),
-            lights: fit.lights,
-            fit_error: fit.relative_l2,
-        })
-    })
+            .with_rotation(rotate_deg.to_radians());
+            let options = FitOptions {
+                lights,
+                ..FitOptions::default()
+            };
+            let mut progress = |p: FitProgress| {
+                if let FitProgress::Iteration {
+                    iteration,
+                    max_iterations,
+                    ..
+                } = p
+                {
+                    report(iteration as f32 / max_iterations.max(1) as f32);
+                }
+            };
+            let fit = fit_srbf_with_progress(&map, &options, &mut progress)
+                .map_err(|e| format!("fit: {e}"))?;
+            Ok(Loaded::Lights {
+                env: Box::new(map),
+                lights: fit.lights,
+                fit_error: fit.relative_l2,
+            })
+        },
+    )
 }

@@ -41,9 +41,12 @@ impl Look {
     /// The look of a loaded scene: its global σ_a override, if any, becomes the absorption of
     /// all strands, and nothing is painted.
     pub fn from_scene(mut scene: Scene) -> Self {
-        let all_strands = scene.spec.hair.mu_a.take().map(|m| {
-            Absorption::SigmaA([m[0] as f32, m[1] as f32, m[2] as f32])
-        });
+        let all_strands = scene
+            .spec
+            .hair
+            .mu_a
+            .take()
+            .map(|m| Absorption::SigmaA([m[0] as f32, m[1] as f32, m[2] as f32]));
         scene.spec.camera = Some(scene.camera);
         let paint = vec![None; scene.groom.strand_count()];
         Self {
@@ -66,7 +69,12 @@ impl Look {
 
     /// σ_a per unit radius of strand `s` as the renderer reads it.
     pub fn sigma_a(&self, s: usize) -> DVec3 {
-        let a = self.paint.get(s).copied().flatten().or(self.base_absorption(s));
+        let a = self
+            .paint
+            .get(s)
+            .copied()
+            .flatten()
+            .or(self.base_absorption(s));
         match a {
             Some(a) => sigma_a_of(a),
             None => DVec3::from_array(self.spec.hair.default_mu_a),
@@ -78,7 +86,13 @@ impl Look {
         let mut groom = (*self.groom).clone();
         let strands = groom.strand_count();
         let absorption: Vec<_> = (0..strands)
-            .map(|s| self.paint.get(s).copied().flatten().or(self.base_absorption(s)))
+            .map(|s| {
+                self.paint
+                    .get(s)
+                    .copied()
+                    .flatten()
+                    .or(self.base_absorption(s))
+            })
             .collect();
         for (appearance, a) in groom.appearance_mut().iter_mut().zip(absorption) {
             appearance.absorption = a;
@@ -98,5 +112,7 @@ pub fn sigma_a(s: DVec3) -> Absorption {
 pub fn sigma_a_of_edit(edit: &crate::app::AbsorptionEdit) -> DVec3 {
     edit.absorption()
         .map(sigma_a_of)
-        .unwrap_or(DVec3::from_array(cuticle_render::HairParams::default().default_mu_a))
+        .unwrap_or(DVec3::from_array(
+            cuticle_render::HairParams::default().default_mu_a,
+        ))
 }

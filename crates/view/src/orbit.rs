@@ -25,7 +25,8 @@ pub fn orbit(c: &Camera, dx: f64, dy: f64) -> Camera {
     let offset = eye - target;
     let r = offset.length().max(1e-6);
     let polar = (offset.dot(up) / r).clamp(-1.0, 1.0).acos();
-    let new_polar = (polar - dy * ORBIT_PER_PIXEL).clamp(POLE_MARGIN, std::f64::consts::PI - POLE_MARGIN);
+    let new_polar =
+        (polar - dy * ORBIT_PER_PIXEL).clamp(POLE_MARGIN, std::f64::consts::PI - POLE_MARGIN);
     let yaw = glam::DQuat::from_axis_angle(up, -dx * ORBIT_PER_PIXEL);
     let flat = yaw * (offset - up * offset.dot(up));
     let flat = flat.try_normalize().unwrap_or(up.any_orthonormal_vector());
@@ -43,7 +44,8 @@ pub fn pan(c: &Camera, dx: f64, dy: f64, height: f64) -> Camera {
     let forward = (target - eye).try_normalize().unwrap_or(DVec3::NEG_Y);
     let right = forward.cross(up).try_normalize().unwrap_or(DVec3::X);
     let true_up = right.cross(forward);
-    let per_pixel = 2.0 * (eye - target).length() * (0.5 * c.fov_deg.to_radians()).tan() / height.max(1.0);
+    let per_pixel =
+        2.0 * (eye - target).length() * (0.5 * c.fov_deg.to_radians()).tan() / height.max(1.0);
     let shift = (-right * dx + true_up * dy) * per_pixel;
     Camera {
         eye: (eye + shift).to_array(),
@@ -55,7 +57,11 @@ pub fn pan(c: &Camera, dx: f64, dy: f64, height: f64) -> Camera {
 /// The eye moved toward (factor < 1) or away from (factor > 1) the target.
 pub fn zoom(c: &Camera, factor: f64) -> Camera {
     let (eye, target, _) = parts(c);
-    let factor = if factor.is_finite() { factor.clamp(0.1, 10.0) } else { 1.0 };
+    let factor = if factor.is_finite() {
+        factor.clamp(0.1, 10.0)
+    } else {
+        1.0
+    };
     Camera {
         eye: (target + (eye - target) * factor).to_array(),
         ..*c

@@ -61,7 +61,8 @@ fn absolute(p: &Path) -> PathBuf {
 fn write_set(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), String> {
     let names: Vec<&str> = files.iter().map(|f| f.0).collect();
     if dir.exists() {
-        let entries = std::fs::read_dir(dir).map_err(|e| format!("cannot read {}: {e}", dir.display()))?;
+        let entries =
+            std::fs::read_dir(dir).map_err(|e| format!("cannot read {}: {e}", dir.display()))?;
         for entry in entries.flatten() {
             let name = entry.file_name();
             if !names.iter().any(|n| name == std::ffi::OsStr::new(n)) {
@@ -74,16 +75,23 @@ fn write_set(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), String> {
         }
     }
     let parent = dir.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(parent).map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
-    let leaf = dir.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    std::fs::create_dir_all(parent)
+        .map_err(|e| format!("cannot create {}: {e}", parent.display()))?;
+    let leaf = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let stage = parent.join(format!(".{leaf}.saving-{}", std::process::id()));
     let old = parent.join(format!(".{leaf}.old-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&stage);
-    let staged = std::fs::create_dir(&stage).map_err(|e| e.to_string()).and_then(|_| {
-        files.iter().try_for_each(|(name, bytes)| {
-            std::fs::write(stage.join(name), bytes).map_err(|e| format!("cannot write {name}: {e}"))
-        })
-    });
+    let staged = std::fs::create_dir(&stage)
+        .map_err(|e| e.to_string())
+        .and_then(|_| {
+            files.iter().try_for_each(|(name, bytes)| {
+                std::fs::write(stage.join(name), bytes)
+                    .map_err(|e| format!("cannot write {name}: {e}"))
+            })
+        });
     if let Err(e) = staged {
         let _ = std::fs::remove_dir_all(&stage);
         return Err(format!("cannot save into {}: {e}", dir.display()));

@@ -65,7 +65,10 @@ pub struct Frame {
 pub enum Report {
     Frame(Box<Frame>),
     /// A frame could not be made (the message of a panic in the renderer).
-    Failed { id: u64, message: String },
+    Failed {
+        id: u64,
+        message: String,
+    },
 }
 
 /// What a preparation depends on.
@@ -276,8 +279,13 @@ impl Loop {
     fn serve(&mut self, request: &Request) {
         let preview = preview_scene(&request.scene, self.scale);
         let never = AtomicBool::new(false);
-        if let Some(frame) = render(&mut self.preview, &preview, request, Quality::Preview, &never)
-        {
+        if let Some(frame) = render(
+            &mut self.preview,
+            &preview,
+            request,
+            Quality::Preview,
+            &never,
+        ) {
             self.adapt_scale(frame.shade_s);
             self.send(Report::Frame(Box::new(frame)));
         }
@@ -285,7 +293,13 @@ impl Loop {
             return;
         }
         let cancel = &self.mailbox.cancel;
-        if let Some(frame) = render(&mut self.full, &request.scene, request, Quality::Full, cancel) {
+        if let Some(frame) = render(
+            &mut self.full,
+            &request.scene,
+            request,
+            Quality::Full,
+            cancel,
+        ) {
             self.send(Report::Frame(Box::new(frame)));
         }
     }

@@ -2,9 +2,9 @@
 //! a small scene (300 strands, 160 × 120, 8 SRBF lights) so that each test runs in seconds.
 
 use cuticle_render::{Image, SceneSpec};
+use cuticle_view::ViewOptions;
 use cuticle_view::app::{Outcome, ViewApp};
 use cuticle_view::shading::StrandBuffer;
-use cuticle_view::ViewOptions;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use std::collections::BTreeSet;
@@ -38,8 +38,10 @@ fn open(spec: SceneSpec, out: &Path) -> Harness<'static, Option<ViewApp>> {
         .wgpu()
         .build_ui_state(
             move |ui, app: &mut Option<ViewApp>| {
-                app.get_or_insert_with(|| ViewApp::new(ui.ctx(), options.clone(), Outcome::default()))
-                    .show_ui(ui)
+                app.get_or_insert_with(|| {
+                    ViewApp::new(ui.ctx(), options.clone(), Outcome::default())
+                })
+                .show_ui(ui)
             },
             None,
         );
@@ -48,11 +50,15 @@ fn open(spec: SceneSpec, out: &Path) -> Harness<'static, Option<ViewApp>> {
 }
 
 fn app<'a>(h: &'a Harness<'static, Option<ViewApp>>) -> &'a ViewApp {
-    h.state().as_ref().expect("the app is built on the first frame")
+    h.state()
+        .as_ref()
+        .expect("the app is built on the first frame")
 }
 
 fn app_mut<'a>(h: &'a mut Harness<'static, Option<ViewApp>>) -> &'a mut ViewApp {
-    h.state_mut().as_mut().expect("the app is built on the first frame")
+    h.state_mut()
+        .as_mut()
+        .expect("the app is built on the first frame")
 }
 
 /// Steps the UI until the full frame of the current look is on screen.
@@ -102,7 +108,11 @@ fn luminance(p: glam::DVec3) -> f64 {
 }
 
 fn mean_luminance(img: &Image, pixels: &[usize]) -> f64 {
-    pixels.iter().map(|&k| luminance(img.pixels[k])).sum::<f64>() / pixels.len().max(1) as f64
+    pixels
+        .iter()
+        .map(|&k| luminance(img.pixels[k]))
+        .sum::<f64>()
+        / pixels.len().max(1) as f64
 }
 
 /// Clicks the widget labelled `label` (through AccessKit: it may be scrolled out of view).
@@ -123,8 +133,14 @@ fn screen_image(h: &mut Harness<'static, Option<ViewApp>>) -> image::RgbaImage {
     let rect = app(h).image_rect.expect("the image is laid out");
     let shot = h.render().expect("the wgpu renderer draws the window");
     let (x, y) = (rect.min.x.round() as u32, rect.min.y.round() as u32);
-    image::imageops::crop_imm(&shot, x, y, rect.width().round() as u32, rect.height().round() as u32)
-        .to_image()
+    image::imageops::crop_imm(
+        &shot,
+        x,
+        y,
+        rect.width().round() as u32,
+        rect.height().round() as u32,
+    )
+    .to_image()
 }
 
 /// The window opens on the default scene (the default groom and sky at test size) and shows
@@ -137,13 +153,23 @@ fn opens_on_the_default_scene_and_matches_its_snapshot() {
     let mut h = open(spec(), dir.path());
     let (img, strands) = frame(&h);
     let (bg, hair) = background_and_hair(&strands);
-    assert!(hair.len() > 500 && bg.len() > 500, "hair {} background {}", hair.len(), bg.len());
+    assert!(
+        hair.len() > 500 && bg.len() > 500,
+        "hair {} background {}",
+        hair.len(),
+        bg.len()
+    );
     let screen = screen_image(&mut h);
-    assert_eq!((screen.width() as usize, screen.height() as usize), (img.width, img.height));
+    assert_eq!(
+        (screen.width() as usize, screen.height() as usize),
+        (img.width, img.height)
+    );
     let tone = cuticle_light::ToneMap::for_map(&app(&h).look.as_ref().unwrap().env);
     for (k, p) in img.pixels.iter().enumerate() {
         let want = tone.apply(p.as_vec3());
-        let got = screen.get_pixel((k % img.width) as u32, (k / img.width) as u32).0;
+        let got = screen
+            .get_pixel((k % img.width) as u32, (k / img.width) as u32)
+            .0;
         for c in 0..3 {
             assert!(
                 (want[c] as i32 - got[c] as i32).abs() <= 2,
@@ -161,12 +187,17 @@ fn opens_on_the_default_scene_and_matches_its_snapshot() {
     assert_eq!(want.dimensions(), screen.dimensions());
     let (mut sum, mut far, n) = (0.0, 0usize, (want.width() * want.height()) as f64);
     for (a, b) in want.pixels().zip(screen.pixels()) {
-        let d: Vec<i32> = (0..3).map(|c| (a.0[c] as i32 - b.0[c] as i32).abs()).collect();
+        let d: Vec<i32> = (0..3)
+            .map(|c| (a.0[c] as i32 - b.0[c] as i32).abs())
+            .collect();
         sum += d.iter().sum::<i32>() as f64 / 3.0;
         far += usize::from(d.iter().any(|&x| x > 16));
     }
     assert!(sum / n <= 1.0, "mean difference {} levels", sum / n);
-    assert!(far as f64 <= 0.005 * n, "{far} pixels off by more than 16 levels");
+    assert!(
+        far as f64 <= 0.005 * n,
+        "{far} pixels off by more than 16 levels"
+    );
 }
 
 /// More eumelanin darkens the hair; more β_R widens the highlight (more hair pixels above half
@@ -184,7 +215,10 @@ fn sliders_change_the_image_as_the_parameter_should() {
     let (dark, _) = frame(&h);
     let (bg, hair) = background_and_hair(&strands);
     let (l, d) = (mean_luminance(&light, &hair), mean_luminance(&dark, &hair));
-    assert!(d < 0.7 * l, "hair luminance {l} → {d} with 8× the eumelanin");
+    assert!(
+        d < 0.7 * l,
+        "hair luminance {l} → {d} with 8× the eumelanin"
+    );
     for &k in &bg {
         assert_eq!(light.pixels[k], dark.pixels[k], "background pixel {k}");
     }
@@ -193,15 +227,23 @@ fn sliders_change_the_image_as_the_parameter_should() {
     h.step();
     set_slider(&mut h, "eumelanin", 8.0);
     let lit = |img: &Image| {
-        let peak = hair.iter().map(|&k| luminance(img.pixels[k])).fold(0.0, f64::max);
-        hair.iter().filter(|&&k| luminance(img.pixels[k]) > 0.5 * peak).count()
+        let peak = hair
+            .iter()
+            .map(|&k| luminance(img.pixels[k]))
+            .fold(0.0, f64::max);
+        hair.iter()
+            .filter(|&&k| luminance(img.pixels[k]) > 0.5 * peak)
+            .count()
     };
     set_slider(&mut h, "β_R", 3.0);
     let (narrow, _) = frame(&h);
     set_slider(&mut h, "β_R", 12.0);
     let (wide, _) = frame(&h);
     let (n, w) = (lit(&narrow), lit(&wide));
-    assert!(w as f64 > 1.3 * n as f64, "pixels above half the peak: β_R 3° {n}, 12° {w}");
+    assert!(
+        w as f64 > 1.3 * n as f64,
+        "pixels above half the peak: β_R 3° {n}, 12° {w}"
+    );
     for &k in &bg {
         assert_eq!(narrow.pixels[k], wide.pixels[k], "background pixel {k}");
     }
@@ -243,11 +285,18 @@ fn paint_undo_and_save_reopen() {
     let (_, hair) = background_and_hair(&strands);
     // Start on a hair pixel near the middle and sweep 30 px across.
     let k = hair[hair.len() / 2];
-    let start = rect.min + egui::vec2((k % strands.width) as f32 + 0.5, (k / strands.width) as f32 + 0.5);
+    let start = rect.min
+        + egui::vec2(
+            (k % strands.width) as f32 + 0.5,
+            (k / strands.width) as f32 + 0.5,
+        );
     stroke(&mut h, start, start + egui::vec2(30.0, 0.0));
     let painted: BTreeSet<u32> = {
         let look = app(&h).look.as_ref().unwrap();
-        (0..look.paint.len()).filter(|&s| look.paint[s].is_some()).map(|s| s as u32).collect()
+        (0..look.paint.len())
+            .filter(|&s| look.paint[s].is_some())
+            .map(|s| s as u32)
+            .collect()
     };
     let total = app(&h).look.as_ref().unwrap().paint.len();
     assert!(
@@ -264,18 +313,27 @@ fn paint_undo_and_save_reopen() {
             let k = y * strands.width + x;
             let shows_paint = (0..strands.ss * strands.ss).any(|i| {
                 strands
-                    .at(x * strands.ss + i % strands.ss, y * strands.ss + i / strands.ss)
+                    .at(
+                        x * strands.ss + i % strands.ss,
+                        y * strands.ss + i / strands.ss,
+                    )
                     .is_some_and(|s| painted.contains(&s))
             });
             if shows_paint {
                 touched += 1;
                 changed += usize::from(before.pixels[k] != after.pixels[k]);
             } else {
-                assert_eq!(before.pixels[k], after.pixels[k], "pixel ({x}, {y}) shows no painted strand");
+                assert_eq!(
+                    before.pixels[k], after.pixels[k],
+                    "pixel ({x}, {y}) shows no painted strand"
+                );
             }
         }
     }
-    assert!(changed as f64 > 0.9 * touched as f64, "{changed} of {touched} pixels of painted strands changed");
+    assert!(
+        changed as f64 > 0.9 * touched as f64,
+        "{changed} of {touched} pixels of painted strands changed"
+    );
 
     click(&mut h, "undo");
     h.step();

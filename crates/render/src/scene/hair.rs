@@ -133,7 +133,12 @@ impl HairParams {
             ("d_b", self.d_b, Self::D_B),
         ];
         checks.extend(self.default_mu_a.map(|c| ("default_mu_a", c, Self::MU_A)));
-        checks.extend(self.mu_a.into_iter().flatten().map(|c| ("mu_a", c, Self::MU_A)));
+        checks.extend(
+            self.mu_a
+                .into_iter()
+                .flatten()
+                .map(|c| ("mu_a", c, Self::MU_A)),
+        );
         match checks.into_iter().find(|c| !c.2.contains(c.1)) {
             Some((name, value, range)) => Err(HairParamError { name, value, range }),
             None => Ok(()),

@@ -207,11 +207,7 @@ impl ViewApp {
             lights: spec.lights,
             out_text: options.out.display().to_string(),
         };
-        let scene_job = Some(jobs::load_scene(
-            spec,
-            options.lights.clone(),
-            repaint(ctx),
-        ));
+        let scene_job = Some(jobs::load_scene(spec, options.lights.clone(), repaint(ctx)));
         Self {
             options,
             outcome,
@@ -503,7 +499,8 @@ impl ViewApp {
             return;
         }
         let cleared = vec![None; look.paint.len()];
-        self.history.record(std::mem::replace(&mut look.paint, cleared));
+        self.history
+            .record(std::mem::replace(&mut look.paint, cleared));
         self.paint_serial += 1;
     }
 
@@ -574,7 +571,9 @@ impl ViewApp {
                 Ok(stem)
             });
         match written {
-            Ok(stem) => self.notes.push(format!("wrote {}.png and .exr", stem.display())),
+            Ok(stem) => self
+                .notes
+                .push(format!("wrote {}.png and .exr", stem.display())),
             Err(e) => self.error(e),
         }
     }

@@ -56,13 +56,62 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
     egui::CollapsingHeader::new("Fiber")
         .default_open(true)
         .show(ui, |ui| {
-            param(ui, &mut h.eta, HairParams::ETA, "η", "", "index of refraction");
-            param(ui, &mut h.alpha_r_deg, HairParams::ALPHA_R_DEG, "α_R", "°", "longitudinal shift of R (TT −α/2, TRT −3α/2)");
-            param(ui, &mut h.beta_r_deg, HairParams::BETA_R_DEG, "β_R", "°", "longitudinal width of R (TT β/2, TRT 2β)");
-            param(ui, &mut h.caustic_width_deg, HairParams::CAUSTIC_WIDTH_DEG, "w_c", "°", "azimuthal width of the TRT glints");
-            param(ui, &mut h.caustic_fade, HairParams::CAUSTIC_FADE, "caustic fade Δη'", "", "over which the glints fade once they merge");
-            param(ui, &mut h.eccentricity, HairParams::ECCENTRICITY, "eccentricity a", "", "cross-section eccentricity (Xu et al. 2011 eq. 24)");
-            param(ui, &mut h.d_b, HairParams::D_B, "d_b", "", "weight of local back scattering (Xu et al. 2011 eq. 4)");
+            param(
+                ui,
+                &mut h.eta,
+                HairParams::ETA,
+                "η",
+                "",
+                "index of refraction",
+            );
+            param(
+                ui,
+                &mut h.alpha_r_deg,
+                HairParams::ALPHA_R_DEG,
+                "α_R",
+                "°",
+                "longitudinal shift of R (TT −α/2, TRT −3α/2)",
+            );
+            param(
+                ui,
+                &mut h.beta_r_deg,
+                HairParams::BETA_R_DEG,
+                "β_R",
+                "°",
+                "longitudinal width of R (TT β/2, TRT 2β)",
+            );
+            param(
+                ui,
+                &mut h.caustic_width_deg,
+                HairParams::CAUSTIC_WIDTH_DEG,
+                "w_c",
+                "°",
+                "azimuthal width of the TRT glints",
+            );
+            param(
+                ui,
+                &mut h.caustic_fade,
+                HairParams::CAUSTIC_FADE,
+                "caustic fade Δη'",
+                "",
+                "over which the glints fade once they merge",
+            );
+            param(
+                ui,
+                &mut h.eccentricity,
+                HairParams::ECCENTRICITY,
+                "eccentricity a",
+                "",
+                "cross-section eccentricity (Xu et al. 2011 eq. 24)",
+            );
+            param(
+                ui,
+                &mut h.d_b,
+                HairParams::D_B,
+                "d_b",
+                "",
+                "weight of local back scattering (Xu et al. 2011 eq. 4)",
+            );
         });
 }
 
@@ -87,16 +136,34 @@ fn absorption_editor(
             changed = true;
         }
         let sigma = crate::look::sigma_a_of_edit(edit);
-        if ui.radio(matches!(edit, AbsorptionEdit::SigmaA(_)), format!("{prefix}σ_a")).clicked() {
+        if ui
+            .radio(
+                matches!(edit, AbsorptionEdit::SigmaA(_)),
+                format!("{prefix}σ_a"),
+            )
+            .clicked()
+        {
             *edit = AbsorptionEdit::SigmaA(sigma.to_array());
             *text = format_rgb(sigma.to_array());
             changed = true;
         }
-        if ui.radio(matches!(edit, AbsorptionEdit::Melanin(_)), format!("{prefix}melanin")).clicked() {
+        if ui
+            .radio(
+                matches!(edit, AbsorptionEdit::Melanin(_)),
+                format!("{prefix}melanin"),
+            )
+            .clicked()
+        {
             *edit = AbsorptionEdit::Melanin([1.3, 0.2]);
             changed = true;
         }
-        if ui.radio(matches!(edit, AbsorptionEdit::Colour(_)), format!("{prefix}colour")).clicked() {
+        if ui
+            .radio(
+                matches!(edit, AbsorptionEdit::Colour(_)),
+                format!("{prefix}colour"),
+            )
+            .clicked()
+        {
             *edit = AbsorptionEdit::Colour([0.5, 0.3, 0.15]);
             changed = true;
         }
@@ -129,11 +196,19 @@ fn absorption_editor(
             let max = HairParams::MU_A.max / cuticle_fiber::absorption::EUMELANIN_SIGMA_A.z;
             let r = 0.0..=max;
             changed |= ui
-                .add(Slider::new(&mut m[0], r.clone()).logarithmic(true).text(format!("{prefix}eumelanin")))
+                .add(
+                    Slider::new(&mut m[0], r.clone())
+                        .logarithmic(true)
+                        .text(format!("{prefix}eumelanin")),
+                )
                 .on_hover_text("concentration (d'Eon et al. 2011's mapping)")
                 .changed();
             changed |= ui
-                .add(Slider::new(&mut m[1], r).logarithmic(true).text(format!("{prefix}pheomelanin")))
+                .add(
+                    Slider::new(&mut m[1], r)
+                        .logarithmic(true)
+                        .text(format!("{prefix}pheomelanin")),
+                )
                 .changed();
         }
         AbsorptionEdit::Colour(c) => {
@@ -166,12 +241,19 @@ fn absorption(app: &mut ViewApp, ui: &mut Ui) {
         .show(ui, |ui| {
             let c = &mut app.controls;
             let mut errors = Vec::new();
-            let mut changed =
-                absorption_editor(ui, "", &mut c.all_edit, &mut c.sigma_text, true, &mut errors);
+            let mut changed = absorption_editor(
+                ui,
+                "",
+                &mut c.all_edit,
+                &mut c.sigma_text,
+                true,
+                &mut errors,
+            );
             ui.horizontal_wrapped(|ui| {
                 for p in PRESETS {
                     if ui.button(p.name).clicked() {
-                        c.all_edit = AbsorptionEdit::Melanin([p.eumelanin as f64, p.pheomelanin as f64]);
+                        c.all_edit =
+                            AbsorptionEdit::Melanin([p.eumelanin as f64, p.pheomelanin as f64]);
                         changed = true;
                     }
                 }
@@ -200,7 +282,11 @@ fn scattering(app: &mut ViewApp, ui: &mut Ui) {
             let sh = &mut spec.shadows;
             ui.add(Slider::new(&mut sh.density, 0.0..=4.0).text("shadow density"))
                 .on_hover_text("multiplies the optical depth (1 physical, 0 none)");
-            ui.add(Slider::new(&mut sh.resolution, 16..=1024).logarithmic(true).text("shadow map texels"));
+            ui.add(
+                Slider::new(&mut sh.resolution, 16..=1024)
+                    .logarithmic(true)
+                    .text("shadow map texels"),
+            );
             ui.add(Slider::new(&mut sh.cutoff, 0.0..=0.01).text("shadow cutoff"))
                 .on_hover_text("transmittance below which a light adds no direct light");
         });
@@ -242,7 +328,9 @@ fn lighting(app: &mut ViewApp, ui: &mut Ui) {
             }
             if let Some(look) = &app.look {
                 ui.label(match look.fit_error {
-                    Some(e) => format!("{} lights, fit relative L2 error {e:.3}", look.lights.len()),
+                    Some(e) => {
+                        format!("{} lights, fit relative L2 error {e:.3}", look.lights.len())
+                    }
                     None => format!("{} lights", look.lights.len()),
                 });
             }
@@ -267,7 +355,11 @@ fn rotate(look: &mut crate::look::Look, delta_deg: f64) {
         })
         .collect();
     look.lights = Arc::new(lights);
-    look.env = Arc::new((*look.env).clone().with_rotation(look.spec.env_rotate_deg.to_radians()));
+    look.env = Arc::new(
+        (*look.env)
+            .clone()
+            .with_rotation(look.spec.env_rotate_deg.to_radians()),
+    );
     look.revisions.lights += 1;
 }
 
@@ -277,8 +369,10 @@ fn groom(app: &mut ViewApp, ui: &mut Ui) {
         .default_open(true)
         .show(ui, |ui| {
             ui.horizontal(|ui| {
-                ui.add(egui::TextEdit::singleline(&mut app.controls.groom_text).desired_width(200.0))
-                    .on_hover_text("a preset (straight, wavy, curly) or a .hair file");
+                ui.add(
+                    egui::TextEdit::singleline(&mut app.controls.groom_text).desired_width(200.0),
+                )
+                .on_hover_text("a preset (straight, wavy, curly) or a .hair file");
                 load = ui.button("load groom").clicked();
             });
             ui.add(
@@ -304,24 +398,43 @@ fn paint(app: &mut ViewApp, ui: &mut Ui) {
                     .on_hover_text("drag: paint; right drag: orbit; scroll: zoom");
             });
             let b = &mut c.brush;
-            ui.add(Slider::new(&mut b.radius_px, 1.0..=200.0).logarithmic(true).text("radius").suffix(" px"));
+            ui.add(
+                Slider::new(&mut b.radius_px, 1.0..=200.0)
+                    .logarithmic(true)
+                    .text("radius")
+                    .suffix(" px"),
+            );
             ui.add(Slider::new(&mut b.strength, 0.0..=1.0).text("strength"));
             ui.add(Slider::new(&mut b.soft_edge, 0.0..=1.0).text("soft edge"));
             let mut errors = Vec::new();
-            absorption_editor(ui, "brush ", &mut c.brush_edit, &mut c.brush_sigma_text, false, &mut errors);
+            absorption_editor(
+                ui,
+                "brush ",
+                &mut c.brush_edit,
+                &mut c.brush_sigma_text,
+                false,
+                &mut errors,
+            );
             ui.horizontal_wrapped(|ui| {
                 for p in PRESETS {
                     if ui.small_button(p.name).clicked() {
-                        c.brush_edit = AbsorptionEdit::Melanin([p.eumelanin as f64, p.pheomelanin as f64]);
+                        c.brush_edit =
+                            AbsorptionEdit::Melanin([p.eumelanin as f64, p.pheomelanin as f64]);
                     }
                 }
             });
             errors.into_iter().for_each(|e| app.error(e));
             ui.horizontal(|ui| {
-                if ui.add_enabled(app.history.can_undo(), egui::Button::new("undo")).clicked() {
+                if ui
+                    .add_enabled(app.history.can_undo(), egui::Button::new("undo"))
+                    .clicked()
+                {
                     app.undo();
                 }
-                if ui.add_enabled(app.history.can_redo(), egui::Button::new("redo")).clicked() {
+                if ui
+                    .add_enabled(app.history.can_redo(), egui::Button::new("redo"))
+                    .clicked()
+                {
                     app.redo();
                 }
                 if ui.button("clear paint").clicked() {
@@ -340,10 +453,20 @@ fn files(app: &mut ViewApp, ui: &mut Ui) {
                 ui.add(egui::TextEdit::singleline(&mut app.controls.out_text).desired_width(200.0));
             });
             ui.horizontal(|ui| {
-                if ui.button("save look").on_hover_text("groom.hair, groom.absorption.json and scene.toml into FOLDER/look").clicked() {
+                if ui
+                    .button("save look")
+                    .on_hover_text(
+                        "groom.hair, groom.absorption.json and scene.toml into FOLDER/look",
+                    )
+                    .clicked()
+                {
                     app.save();
                 }
-                if ui.button("screenshot").on_hover_text("the full-quality frame as PNG and EXR into FOLDER").clicked() {
+                if ui
+                    .button("screenshot")
+                    .on_hover_text("the full-quality frame as PNG and EXR into FOLDER")
+                    .clicked()
+                {
                     app.screenshot();
                 }
             });

@@ -16,14 +16,17 @@ pub fn show(app: &mut ViewApp, ui: &mut Ui) {
             return;
         };
         let avail = ui.available_rect_before_wrap();
-        let scale = (avail.width() / w as f32).min(avail.height() / h as f32).min(1.0);
+        let scale = (avail.width() / w as f32)
+            .min(avail.height() / h as f32)
+            .min(1.0);
         let size = Vec2::new(w as f32, h as f32) * scale.max(0.01);
         let rect = Rect::from_min_size(avail.min, size);
         app.image_rect = Some(rect);
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         if let Some(shown) = &app.shown {
             let uv = Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-            ui.painter().image(shown.texture.id(), rect, uv, egui::Color32::WHITE);
+            ui.painter()
+                .image(shown.texture.id(), rect, uv, egui::Color32::WHITE);
         }
         let to_image = |p: egui::Pos2| {
             let v = (p - rect.min) / rect.size();
@@ -48,7 +51,8 @@ fn camera(app: &mut ViewApp, ui: &Ui, response: &egui::Response, px: f64, height
     if response.dragged_by(orbit_button) && (dx != 0.0 || dy != 0.0) {
         cam2 = orbit::orbit(&cam2, dx, dy);
     } else if app.controls.tool == Tool::Camera
-        && (response.dragged_by(PointerButton::Secondary) || response.dragged_by(PointerButton::Middle))
+        && (response.dragged_by(PointerButton::Secondary)
+            || response.dragged_by(PointerButton::Middle))
     {
         cam2 = orbit::pan(&cam2, dx, dy, height);
     }
@@ -77,7 +81,8 @@ fn paint(
     let pointer = ui.input(|i| i.pointer.interact_pos().or(i.pointer.hover_pos()));
     if let Some(p) = pointer.filter(|p| rect.contains(*p)) {
         let r = (app.controls.brush.radius_px / px) as f32;
-        ui.painter().circle_stroke(p, r, egui::Stroke::new(1.0, egui::Color32::WHITE));
+        ui.painter()
+            .circle_stroke(p, r, egui::Stroke::new(1.0, egui::Color32::WHITE));
     }
     let down = ui.input(|i| i.pointer.primary_down());
     if down && response.is_pointer_button_down_on() {

@@ -58,7 +58,13 @@ impl Brush {
 
     /// Strands under a dab at (x, y), full-resolution image pixels of an image `full_width`
     /// wide, with their weights (0 < w ≤ strength), read from `buffer` at its own resolution.
-    pub fn dab(&self, buffer: &StrandBuffer, full_width: usize, x: f64, y: f64) -> BTreeMap<u32, f64> {
+    pub fn dab(
+        &self,
+        buffer: &StrandBuffer,
+        full_width: usize,
+        x: f64,
+        y: f64,
+    ) -> BTreeMap<u32, f64> {
         let mut out = BTreeMap::new();
         if buffer.width == 0 || full_width == 0 {
             return out;
