@@ -35,7 +35,7 @@ enum Command {
     /// Environment light: fit an environment map with J SRBF lights (fit).
     Env(commands::env::Args),
     /// Render a groom under environment light (Xu et al. 2011's SRBF renderer, or --method brute).
-    Render(commands::render::Args),
+    Render(Box<commands::render::Args>),
     /// The live look-development window: edit the hair, lighting and camera, paint colour onto strands.
     View(commands::view::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
@@ -54,7 +54,7 @@ fn main() {
         Command::Sim(args) => commands::sim::run(args),
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Env(args) => commands::env::run(args),
-        Command::Render(args) => commands::render::run(args),
+        Command::Render(args) => commands::render::run(*args),
         Command::Validate(args) => commands::validate::run(args),
         Command::View(args) => commands::view::run(args),
         Command::Bench(command) => commands::render::bench(command),

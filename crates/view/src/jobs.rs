@@ -93,6 +93,8 @@ pub fn load_scene(
 pub fn load_groom(name: String, strands: usize, notify: impl Fn() + Send + 'static) -> Job {
     Job::spawn(format!("loading groom {name}"), notify, move |_| {
         let groom = cuticle_render::scene::load_groom(&name, strands).map_err(|e| e.to_string())?;
+        // As Scene::load does, so that a saved look reopens with the same points.
+        let groom = cuticle_render::scene::resample::split_long_segments(groom);
         if groom.strand_count() == 0 {
             return Err(format!("groom {name} has no strands"));
         }
@@ -118,7 +120,7 @@ pub fn fit_lights(
         move |report| {
             let map = match current {
                 Some(map) => (*map).clone(),
-                None => cuticle_light::load_or_default(&env).map_err(|e| format!("{env}: {e}"))?,
+                None => cuticle_render::scene::load_env(&env).map_err(|e| format!("{env}: {e}"))?,
             }
             .with_rotation(rotate_deg.to_radians());
             let options = FitOptions {

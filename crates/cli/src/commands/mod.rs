@@ -6,5 +6,6 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod trace;
 pub mod validate;
 pub mod view;

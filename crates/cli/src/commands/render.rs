@@ -21,6 +21,8 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "out/render")]
     out: PathBuf,
+    #[command(flatten)]
+    path: crate::commands::trace::PathArgs,
 }
 
 /// The scene flags `render` and `view` share.
@@ -35,14 +37,15 @@ pub struct SceneArgs {
     /// Strands of a preset groom.
     #[arg(long)]
     strands: Option<usize>,
-    /// `default` (procedural sky) or an .hdr/.exr lat-long map.
+    /// `default` (procedural sky), `constant:R,G,B` (uniform) or an .hdr/.exr lat-long map.
     #[arg(long)]
     env: Option<String>,
     /// Number J of SRBF lights to fit, or a lights.json from `cuticle env fit`.
     #[arg(long)]
     lights: Option<String>,
-    /// srbf (Xu et al. 2011) or brute (exact model, 6 n² directional lights).
-    #[arg(long, value_parser = ["srbf", "brute"])]
+    /// srbf (Xu et al. 2011), brute (exact model, 6 n² directional lights) or path (the path
+    /// tracer, flags --spp, --seed, --max-depth, --model and the fiber flags).
+    #[arg(long, value_parser = ["srbf", "brute", "path"])]
     method: Option<String>,
     /// Segments m of the linear quadrature.
     #[arg(long)]
@@ -82,8 +85,12 @@ pub struct SceneArgs {
 
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
+    if spec.method == Method::Path {
+        return crate::commands::trace::run(&args.path, spec, &args.out);
+    }
     let renderer = Renderer::new();
     let scene = Scene::load(spec, lights)?;
+    Renderer::accepts(&scene)?;
     eprintln!(
         "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}",
         scene.groom.strand_count(),
@@ -138,6 +145,9 @@ pub enum Bench {
     /// The renderer on the paper's workload (default groom, 40 SRBF lights, 720x480, single and
     /// multiple scattering): medians of full frames and of re-renders after an absorption edit.
     Render(BenchArgs),
+    /// The path tracer: BVH build time, ray casting and path tracing rays/s and spp/s
+    /// (default: straight.hair at 360x240 under the procedural sky).
+    Trace(crate::commands::trace::TraceBenchArgs),
 }
 
 #[derive(clap::Args, Clone, Debug)]
@@ -158,7 +168,10 @@ pub struct BenchArgs {
 }
 
 pub fn bench(command: Bench) -> Result<()> {
-    let Bench::Render(args) = command;
+    let args = match command {
+        Bench::Render(args) => args,
+        Bench::Trace(args) => return crate::commands::trace::bench(&args),
+    };
     let mut spec = SceneSpec::default();
     args.strands.into_iter().for_each(|v| spec.strands = v);
     args.width.into_iter().for_each(|v| spec.width = v);
@@ -241,10 +254,10 @@ pub fn spec_from(args: &SceneArgs) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)
         spec.env = e.clone();
     }
     if let Some(m) = &args.method {
-        spec.method = if m == "brute" {
-            Method::Brute
-        } else {
-            Method::Srbf
+        spec.method = match m.as_str() {
+            "brute" => Method::Brute,
+            "path" => Method::Path,
+            _ => Method::Srbf,
         };
     }
     spec.multiple = spec.multiple && !args.no_multiple;
@@ -304,6 +317,7 @@ fn multiple_json(scene: &Scene) -> Value {
         Method::Brute => {
             "exact azimuthal functions and Marschner lobes per directional light, integrated numerically"
         }
+        Method::Path => "every path, by path tracing",
     };
     json!({
         "enabled": scene.spec.multiple,
@@ -344,7 +358,7 @@ pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
 }
 
 /// Linear 32-bit float RGB OpenEXR.
-fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
+pub fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
     let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
         let p = image.pixels[y * image.width + x];
         (p.x as f32, p.y as f32, p.z as f32)

@@ -25,6 +25,11 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
     spec.validate()?;
+    if spec.method == cuticle_render::Method::Path {
+        anyhow::bail!(
+            "the window shades with srbf or brute; --method path is for `cuticle render`"
+        );
+    }
     if let Some(path) = &args.screenshot
         && let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
         && !dir.is_dir()
