@@ -39,6 +39,8 @@ enum Command {
     /// Two renders' output folders against each other over the hair: per-channel means, ratio,
     /// relative RMSE, for the whole hair and its bottom fifth (compare.json).
     Compare(commands::compare::Args),
+    /// The live look-development window: edit the hair, lighting and camera, paint colour onto strands.
+    View(commands::view::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),
     /// Benchmarks: the renderer on the paper's workload (render).
@@ -58,6 +60,7 @@ fn main() {
         Command::Render(args) => commands::render::run(*args),
         Command::Validate(args) => commands::validate::run(args),
         Command::Compare(args) => commands::compare::run(args),
+        Command::View(args) => commands::view::run(args),
         Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {

@@ -9,3 +9,4 @@ pub mod sim;
 pub mod sweep;
 pub mod trace;
 pub mod validate;
+pub mod view;

@@ -18,6 +18,18 @@ use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Clone, Debug)]
 pub struct Args {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output folder.
+    #[arg(long, default_value = "out/render")]
+    out: PathBuf,
+    #[command(flatten)]
+    path: crate::commands::trace::PathArgs,
+}
+
+/// The scene flags `render` and `view` share.
+#[derive(clap::Args, Clone, Debug)]
+pub struct SceneArgs {
     /// A TOML scene file (keys as in SceneSpec); flags override it.
     #[arg(long)]
     scene: Option<PathBuf>,
@@ -71,15 +83,10 @@ pub struct Args {
     /// TRT caustic width w_c, degrees.
     #[arg(long, allow_negative_numbers = true)]
     caustic_width_deg: Option<f64>,
-    /// Output folder.
-    #[arg(long, default_value = "out/render")]
-    out: PathBuf,
-    #[command(flatten)]
-    path: crate::commands::trace::PathArgs,
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let (spec, lights) = spec_from(&args)?;
+    let (spec, lights) = spec_from(&args.scene)?;
     if spec.method == Method::Path {
         return crate::commands::trace::run(&args.path, spec, &args.out);
     }
@@ -234,7 +241,7 @@ fn print_bench(r: &BenchReport) {
 }
 
 /// The scene file (if any) with the flags laid over it, and lights read from a file.
-fn spec_from(args: &Args) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
+pub fn spec_from(args: &SceneArgs) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
     let mut spec = match &args.scene {
         Some(path) => SceneSpec::from_toml_file(path)?,
         None => SceneSpec::default(),

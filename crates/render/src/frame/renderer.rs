@@ -29,6 +29,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// A linear RGB image, row-major, top row first.
@@ -200,6 +201,20 @@ impl Renderer {
         prepared: &Prepared,
         progress: Progress,
     ) -> Vec<DVec3> {
+        let never = AtomicBool::new(false);
+        self.shade_cancellable(scene, prepared, progress, &never)
+            .unwrap_or_default()
+    }
+
+    /// [`Self::shade_with_progress`] that gives up once `cancel` is set (the points left are
+    /// skipped) and then returns `None`: a live window drops a frame made stale by a newer edit.
+    pub fn shade_cancellable(
+        &self,
+        scene: &Scene,
+        prepared: &Prepared,
+        progress: Progress,
+        cancel: &AtomicBool,
+    ) -> Option<Vec<DVec3>> {
         let counter = Counter::new(prepared.points.len(), progress);
         let fibers: Vec<MarschnerParams> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
@@ -250,13 +265,16 @@ impl Renderer {
             }),
         };
         let nl = prepared.lights.len();
-        prepared
+        let colours = prepared
             .points
             .par_iter()
             .enumerate()
             .map_init(
                 || (Vec::new(), Vec::new()),
                 |scratch, (k, &p)| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return DVec3::ZERO;
+                    }
                     counter.tick();
                     let p = p as usize;
                     let point = ShadingPoint {
@@ -272,7 +290,8 @@ impl Renderer {
                     }
                 },
             )
-            .collect()
+            .collect::<Vec<_>>();
+        (!cancel.load(Ordering::Relaxed)).then_some(colours)
     }
 
     /// Stage 5: averages each pixel's subsamples, hair shaded by interpolating its segment's

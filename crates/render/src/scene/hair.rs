@@ -56,66 +56,91 @@ impl Default for HairParams {
     }
 }
 
+/// The values a hair parameter may take: (min, max], or [min, max] when `min_closed`. The
+/// one statement of each range, which validation checks and the window's sliders span.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamRange {
+    pub min: f64,
+    pub max: f64,
+    pub min_closed: bool,
+}
+
+impl ParamRange {
+    const fn closed(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            max,
+            min_closed: true,
+        }
+    }
+
+    const fn open_below(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            max,
+            min_closed: false,
+        }
+    }
+
+    /// Whether `value` is finite and inside.
+    pub fn contains(&self, value: f64) -> bool {
+        value.is_finite()
+            && value <= self.max
+            && (value > self.min || (self.min_closed && value == self.min))
+    }
+}
+
+impl std::fmt::Display for ParamRange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let open = if self.min_closed { '[' } else { '(' };
+        write!(f, "{open}{}, {}]", self.min, self.max)
+    }
+}
+
 /// Why a parameter set cannot be rendered.
 #[derive(Clone, Debug, thiserror::Error, PartialEq)]
 #[error("hair parameter {name} = {value} is outside {range}")]
 pub struct HairParamError {
     pub name: &'static str,
     pub value: f64,
-    pub range: &'static str,
+    pub range: ParamRange,
 }
 
 impl HairParams {
+    pub const ETA: ParamRange = ParamRange::open_below(1.0, 10.0);
+    pub const ALPHA_R_DEG: ParamRange = ParamRange::closed(-20.0, 20.0);
+    pub const BETA_R_DEG: ParamRange = ParamRange::open_below(0.0, 45.0);
+    /// Each channel of σ_a (per unit radius).
+    pub const MU_A: ParamRange = ParamRange::closed(0.0, 1000.0);
+    pub const ECCENTRICITY: ParamRange = ParamRange::closed(0.5, 2.0);
+    pub const CAUSTIC_WIDTH_DEG: ParamRange = ParamRange::open_below(0.0, 90.0);
+    pub const CAUSTIC_FADE: ParamRange = ParamRange::open_below(0.0, 2.0);
+    pub const D_B: ParamRange = ParamRange::closed(0.0, 1.0);
+
     /// Checks every field against the ranges the model and tables cover.
     pub fn validate(&self) -> Result<(), HairParamError> {
-        let mu = self.mu_a.unwrap_or(self.default_mu_a);
-        let checks = [
-            (
-                "eta",
-                self.eta,
-                self.eta > 1.0 && self.eta <= 10.0,
-                "(1, 10]",
-            ),
-            (
-                "alpha_r_deg",
-                self.alpha_r_deg,
-                self.alpha_r_deg.abs() <= 20.0,
-                "[-20, 20]",
-            ),
-            (
-                "beta_r_deg",
-                self.beta_r_deg,
-                self.beta_r_deg > 0.0 && self.beta_r_deg <= 45.0,
-                "(0, 45]",
-            ),
-            (
-                "mu_a",
-                mu[0].min(mu[1]).min(mu[2]),
-                mu.iter().all(|c| (0.0..=1000.0).contains(c)),
-                "[0, 1000]",
-            ),
-            (
-                "eccentricity",
-                self.eccentricity,
-                (0.5..=2.0).contains(&self.eccentricity),
-                "[0.5, 2]",
-            ),
+        let mut checks = vec![
+            ("eta", self.eta, Self::ETA),
+            ("alpha_r_deg", self.alpha_r_deg, Self::ALPHA_R_DEG),
+            ("beta_r_deg", self.beta_r_deg, Self::BETA_R_DEG),
+            ("eccentricity", self.eccentricity, Self::ECCENTRICITY),
             (
                 "caustic_width_deg",
                 self.caustic_width_deg,
-                self.caustic_width_deg > 0.0 && self.caustic_width_deg <= 90.0,
-                "(0, 90]",
+                Self::CAUSTIC_WIDTH_DEG,
             ),
-            (
-                "caustic_fade",
-                self.caustic_fade,
-                self.caustic_fade > 0.0 && self.caustic_fade <= 2.0,
-                "(0, 2]",
-            ),
-            ("d_b", self.d_b, (0.0..=1.0).contains(&self.d_b), "[0, 1]"),
+            ("caustic_fade", self.caustic_fade, Self::CAUSTIC_FADE),
+            ("d_b", self.d_b, Self::D_B),
         ];
-        match checks.into_iter().find(|c| !(c.1.is_finite() && c.2)) {
-            Some((name, value, _, range)) => Err(HairParamError { name, value, range }),
+        checks.extend(self.default_mu_a.map(|c| ("default_mu_a", c, Self::MU_A)));
+        checks.extend(
+            self.mu_a
+                .into_iter()
+                .flatten()
+                .map(|c| ("mu_a", c, Self::MU_A)),
+        );
+        match checks.into_iter().find(|c| !c.2.contains(c.1)) {
+            Some((name, value, range)) => Err(HairParamError { name, value, range }),
             None => Ok(()),
         }
     }
@@ -123,13 +148,7 @@ impl HairParams {
     /// The shading parameters of a strand with this appearance: the exact model's parameters,
     /// which both the circular-Gaussian path and the brute-force reference read.
     pub fn fiber(&self, appearance: Option<&Appearance>) -> MarschnerParams {
-        let own = appearance.and_then(|a| a.absorption).map(|a| match a {
-            Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
-            Absorption::Melanin {
-                eumelanin,
-                pheomelanin,
-            } => mu_a_from_melanin(eumelanin as f64, pheomelanin as f64),
-        });
+        let own = appearance.and_then(|a| a.absorption).map(sigma_a_of);
         let mu_a = match self.mu_a {
             Some(m) => DVec3::from_array(m),
             None => own.unwrap_or(DVec3::from_array(self.default_mu_a)),
@@ -144,6 +163,18 @@ impl HairParams {
             caustic_fade: self.caustic_fade,
             ..MarschnerParams::default()
         }
+    }
+}
+
+/// σ_a per unit radius of a strand's absorption: given, or from melanin through the fiber
+/// crate's mapping.
+pub fn sigma_a_of(absorption: Absorption) -> DVec3 {
+    match absorption {
+        Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
+        Absorption::Melanin {
+            eumelanin,
+            pheomelanin,
+        } => mu_a_from_melanin(eumelanin as f64, pheomelanin as f64),
     }
 }
 

@@ -40,6 +40,9 @@ pub struct SceneSpec {
     pub groom: String,
     /// Strands of a preset groom.
     pub strands: usize,
+    /// A per-strand absorption file laid over the groom's own (the JSON sidecar
+    /// `cuticle view` saves with a painted groom: [`cuticle_groom::strand_absorption`]).
+    pub strand_absorption: Option<String>,
     /// `default` (the procedural sky), `constant:R,G,B` (or `constant:V`, a uniform
     /// environment for tests) or an .hdr/.exr lat-long map.
     pub env: String,
@@ -69,6 +72,7 @@ impl Default for SceneSpec {
         Self {
             groom: "straight".into(),
             strands: Preset::DEFAULT_STRANDS,
+            strand_absorption: None,
             env: "default".into(),
             env_rotate_deg: 0.0,
             lights: 40,
@@ -175,7 +179,12 @@ impl Scene {
     /// of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         spec.validate()?;
-        let groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
+        let mut groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
+        if let Some(path) = &spec.strand_absorption {
+            groom = groom
+                .with_strand_absorption(path)
+                .map_err(|e| SceneError::Groom(format!("strand absorption {path}: {e}")))?;
+        }
         let env = load_env(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
         let (lights, fit_error) = match lights {
