@@ -145,7 +145,10 @@ mod tests {
         for beta in [0.04, 1e-3, crate::ranges::MIN_BETA, 1e-9] {
             assert!(panels(beta) <= bound, "β {beta}: {} panels", panels(beta));
         }
-        assert!(panels(0.04) < panels(1e-3), "finer panels for narrower lobes");
+        assert!(
+            panels(0.04) < panels(1e-3),
+            "finer panels for narrower lobes"
+        );
     }
 
     /// A narrow longitudinal lobe at the cone times a uniform azimuth: albedo exactly 1.

@@ -34,6 +34,8 @@ pub struct SimConfig {
     pub grid: [usize; 2],
     /// ∫ S dω of R, TT, TRT, TRRT, rest and their total (channel means), as recorded.
     pub energy: [f64; 6],
+    /// The simulation's random seed, where its record gives one.
+    pub seed: Option<u64>,
 }
 
 /// The lobe files of a configuration, in lobe order, then their sum.
@@ -118,7 +120,28 @@ impl SimConfig {
             rays,
             grid,
             energy,
+            seed: params["seed"].as_u64(),
         })
+    }
+
+    /// Whether `other` simulates the same fiber and light with as many paths: what a second
+    /// run for the noise floor must do ([`crate::noise`]); its seed must differ.
+    pub fn same_setup(&self, other: &SimConfig) -> bool {
+        (
+            self.theta_i,
+            self.alpha_deg,
+            self.beta,
+            self.eta,
+            self.mu_a,
+            self.rays,
+        ) == (
+            other.theta_i,
+            other.alpha_deg,
+            other.beta,
+            other.eta,
+            other.mu_a,
+            other.rays,
+        )
     }
 
     /// Checks the configuration's images and `azimuthal.csv` against each other and against

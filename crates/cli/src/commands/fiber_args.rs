@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result};
 use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::nonseparable::Scales;
 use cuticle_fiber::ranges::{self, CountRange};
 use cuticle_fiber::{DEon2011, FiberModel, FiberParams, Marschner2003, NonSeparable};
 use glam::DVec3;
@@ -20,7 +21,10 @@ pub const ITERATIONS: CountRange = CountRange {
 pub enum ModelName {
     Marschner,
     Deon2011,
+    /// The non-separable model with tilted scales' losses (the project's; see the fiber crate).
     Nonseparable,
+    /// The non-separable model as d'Eon et al. 2014 specifies it.
+    NonseparablePaper,
 }
 
 impl ModelName {
@@ -29,6 +33,7 @@ impl ModelName {
             ModelName::Marschner => "marschner",
             ModelName::Deon2011 => "deon2011",
             ModelName::Nonseparable => "nonseparable",
+            ModelName::NonseparablePaper => "nonseparable-paper",
         }
     }
 }
@@ -104,8 +109,13 @@ impl FiberArgs {
                     model.tabulated()
                 })
             }
-            ModelName::Nonseparable => {
-                let model = NonSeparable::new(params)?.with_iterations(self.iterations);
+            ModelName::Nonseparable | ModelName::NonseparablePaper => {
+                let scales = match self.model {
+                    ModelName::NonseparablePaper => Scales::Paper,
+                    _ => Scales::Tilted,
+                };
+                let model =
+                    NonSeparable::with_scales(params, scales)?.with_iterations(self.iterations);
                 Box::new(if self.direct {
                     model
                 } else {

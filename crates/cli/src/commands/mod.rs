@@ -1,3 +1,4 @@
+pub mod compare;
 pub mod env;
 pub mod fiber_args;
 pub mod furnace;
@@ -6,4 +7,6 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod trace;
 pub mod validate;
+pub mod view;

@@ -151,7 +151,7 @@ pub fn frame_need(
 pub fn light_count(spec: &SceneSpec, srbf_lights: usize) -> u64 {
     match spec.method {
         Method::Brute => 6 * (spec.brute_grid as u64).pow(2),
-        Method::Srbf => srbf_lights as u64,
+        Method::Srbf | Method::Path => srbf_lights as u64,
     }
 }
 
@@ -203,8 +203,14 @@ mod tests {
         // 16384 × 16384 at 3 × 3 subsamples: 29 GB of visibility buffer alone.
         let big = spec(|s| (s.width, s.height) = (16384, 16384)).memory_need(None, 2);
         assert!(big.total() > 29_000_000_000, "{}", Bytes(big.total()));
-        let visibility = big.parts.iter().find(|(n, _)| n.starts_with("the visibility"));
-        assert!(visibility.is_some_and(|(_, b)| *b > 28_000_000_000), "{big:?}");
+        let visibility = big
+            .parts
+            .iter()
+            .find(|(n, _)| n.starts_with("the visibility"));
+        assert!(
+            visibility.is_some_and(|(_, b)| *b > 28_000_000_000),
+            "{big:?}"
+        );
         let err = big.check(8_000_000_000).unwrap_err().to_string();
         assert!(
             err.contains("needs about") && err.contains("8.0 GB is available"),
