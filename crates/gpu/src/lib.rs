@@ -44,6 +44,7 @@
 //! exists, else the CPU renderer; `gpu` takes any adapter, a software one (lavapipe) included,
 //! and fails with one line when there is none; `cpu` never opens a device.
 
+pub mod bench;
 mod buffers;
 pub mod choice;
 pub mod device;

@@ -161,7 +161,7 @@ impl GpuRenderer {
                 &image_buffer,
             ],
         );
-        let frame = GpuFrame {
+        let mut frame = GpuFrame {
             params,
             params_buffer,
             lobes: None,
@@ -199,8 +199,6 @@ impl GpuRenderer {
             gpu_seconds: None,
             prepared,
         };
-        self.gpu.queue.submit([]);
-        let mut frame = frame;
         frame.upload_seconds = start.elapsed().as_secs_f64();
         Ok(frame)
     }

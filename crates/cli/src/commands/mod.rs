@@ -1,3 +1,4 @@
+pub mod device;
 pub mod env;
 pub mod fiber_args;
 pub mod furnace;

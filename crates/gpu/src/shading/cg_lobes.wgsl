@@ -3,7 +3,7 @@
 
 // C_0 … C_6 of N_R's polynomial in |cos(φ/2)| (Xu et al. 2011 eq. 13).
 fn r_coefficients(eta: f32, cos_theta_d: f32) -> array<f32, 7> {
-    let binomial = array<f32, 6>(1.0, 5.0, 10.0, 10.0, 5.0, 1.0);
+    var binomial = array<f32, 6>(1.0, 5.0, 10.0, 10.0, 5.0, 1.0);
     let f0 = schlick_f0(eta);
     var out = array<f32, 7>(0.0, 0.25, 0.0, 0.0, 0.0, 0.0, 0.0);
     var power = 1.0;
@@ -16,7 +16,7 @@ fn r_coefficients(eta: f32, cos_theta_d: f32) -> array<f32, 7> {
 
 // 𝒩_R = Σ_k C_k 𝒞_k(λ′, δ) (eq. 14), from the table of 𝒞_k/Z and ln Z.
 fn r_convolved(eta: f32, cos_theta_d: f32, lambda_light: f32, delta: f32) -> f32 {
-    let c = r_coefficients(eta, cos_theta_d);
+    var c = r_coefficients(eta, cos_theta_d);
     let g = params.grids[GRID_COSINE];
     let cx = cell_x(g, log(clamp(lambda_light, 0.001, 10.0)));
     let cy = cell_y(g, abs(wrap_pi(delta)));

@@ -67,7 +67,7 @@ fn dual_light(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32
     let sigma_light = sqrt(light_var);
     var out = vec3<f32>(0.0);
     if (passes(t)) {
-        out = t * params.d_b * local(back, theta_o, theta_j, sigma_light, direct_azimuth)
+        out = t * params.d_b * local_term(back, theta_o, theta_j, sigma_light, direct_azimuth)
             / spread_at(theta_j, sigma_light);
     }
     if (max(scattered.x, max(scattered.y, scattered.z)) > NEGLIGIBLE) {
@@ -76,15 +76,15 @@ fn dual_light(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32
         let sigma_f = sqrt(light_var + spread);
         let scattered_azimuth = (PI - abs(delta)) / (PI * PI);
         out += scattered
-            * (global(theta_o, theta_j, sigma_f, delta)
-                + params.d_b * local(back, theta_o, theta_j, sigma_f, scattered_azimuth))
+            * (global_term(theta_o, theta_j, sigma_f, delta)
+                + params.d_b * local_term(back, theta_o, theta_j, sigma_f, scattered_azimuth))
             / spread_at(theta_j, sigma_f);
     }
     return energy * out;
 }
 
-// Dual::global: Σ_t ∫ g^u(θ_i; θ_j, σ_f) ½M_t (cos²θ_i/cos²θ_d) 𝒩^G_t dθ_i (eq. 27 without 1/Z).
-fn global(theta_o: f32, theta_j: f32, sigma_f: f32, delta: f32) -> vec3<f32> {
+// Dual::global (a WGSL-safe name): Σ_t ∫ g^u(θ_i; θ_j, σ_f) ½M_t (cos²θ_i/cos²θ_d) 𝒩^G_t dθ_i (eq. 27 without 1/Z).
+fn global_term(theta_o: f32, theta_j: f32, sigma_f: f32, delta: f32) -> vec3<f32> {
     var it: Integrand;
     it.delta = delta;
     it.half_w = half_cosines(delta);
@@ -109,7 +109,8 @@ fn global_tt(tt: TtLobes, delta: f32) -> vec3<f32> {
 }
 
 // The TRT integrand of Dual::global: each channel's slots over the half circle.
-fn global_trt(trt: TrtLobes, delta: f32) -> vec3<f32> {
+fn global_trt(trt_in: TrtLobes, delta: f32) -> vec3<f32> {
+    var trt = trt_in;
     var out = vec3<f32>(0.0);
     for (var c = 0u; c < 3u; c++) {
         for (var s = 0u; s < 3u; s++) {
@@ -127,12 +128,13 @@ fn unit_half(bandwidth: f32, offset: f32) -> f32 {
     return cg_integral(bandwidth) * half_share(bandwidth, offset) / PI;
 }
 
-// Dual::local: per channel Ā_b 𝒩^L ∫ g^u(θ_i; θ_j, σ) ½M_b (cos²θ_i/cos²θ_d) dθ_i (eq. 29
+// Dual::local (a WGSL-safe name): per channel Ā_b 𝒩^L ∫ g^u(θ_i; θ_j, σ) ½M_b (cos²θ_i/cos²θ_d) dθ_i (eq. 29
 // without 1/Z).
-fn local(back: array<Averages, 3>, theta_o: f32, theta_j: f32, sigma: f32, azimuth: f32) -> vec3<f32> {
+fn local_term(back_in: array<Averages, 3>, theta_o: f32, theta_j: f32, sigma: f32, azimuth: f32) -> vec3<f32> {
     if (azimuth <= 0.0) {
         return vec3<f32>(0.0);
     }
+    var back = back_in;
     let o = outgoing(theta_o);
     var it: Integrand;
     it.kind = KIND_ONE;
@@ -148,8 +150,9 @@ fn local(back: array<Averages, 3>, theta_o: f32, theta_j: f32, sigma: f32, azimu
 }
 
 // 𝒩^G_R = (1/π) Σ_k C_k W_k(δ) (eqs. 13, 28).
-fn r_half(cos_theta_d: f32, w: array<f32, 7>) -> f32 {
-    let c = r_coefficients(params.eta, cos_theta_d);
+fn r_half(cos_theta_d: f32, w_in: array<f32, 7>) -> f32 {
+    var w = w_in;
+    var c = r_coefficients(params.eta, cos_theta_d);
     var sum = 0.0;
     for (var k = 1u; k < 7u; k++) {
         sum += c[k] * w[k];

@@ -101,7 +101,8 @@ fn tt_convolved(tt: TtLobes, k1: f32, it: Integrand) -> vec3<f32> {
 }
 
 // 𝒩_TRT (eq. 12 with 20 and 25): the three slots of each channel.
-fn trt_convolved(trt: TrtLobes, k1: f32, it: Integrand) -> vec3<f32> {
+fn trt_convolved(trt_in: TrtLobes, k1: f32, it: Integrand) -> vec3<f32> {
+    var trt = trt_in;
     let sin_star = sin(trt.centre.x);
     let cos_star = cos(trt.centre.x);
     let a = it.cos_delta * cos_star;
