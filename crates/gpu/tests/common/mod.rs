@@ -52,19 +52,20 @@ pub fn load(spec: SceneSpec) -> Scene {
     Scene::load(spec, None).expect("test scene")
 }
 
-/// A map from ../shared/data/envmaps, which CI has beside the checkout.
-pub fn shared_map(name: &str) -> String {
+/// A map from ../shared/data/envmaps, which CI has beside the checkout; `None` (said plainly)
+/// where it is absent, as every test of the project's data does (DESIGN.md §6).
+pub fn shared_map(name: &str) -> Option<String> {
     let path = PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../../shared/data/envmaps"
     ))
     .join(name);
-    assert!(
-        path.exists(),
-        "{} is absent: the parity test under a real map needs ../shared/data beside the checkout",
-        path.display()
-    );
-    path.to_string_lossy().into_owned()
+    if path.exists() {
+        Some(path.to_string_lossy().into_owned())
+    } else {
+        println!("skipped: {} is absent", path.display());
+        None
+    }
 }
 
 /// Whether any subsample of pixel k shows hair.
