@@ -10,8 +10,18 @@ use std::process::Command;
 fn render(device: &str, no_adapter: bool, out: &std::path::Path) -> std::process::Output {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_cuticle"));
     cmd.args([
-        "render", "--device", device, "--strands", "30", "--lights", "4", "--width", "48",
-        "--height", "32", "--out",
+        "render",
+        "--device",
+        device,
+        "--strands",
+        "30",
+        "--lights",
+        "4",
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--out",
     ])
     .arg(out);
     if no_adapter {
@@ -35,11 +45,21 @@ fn no_adapter_fails_gpu_and_auto_falls_back_to_the_cpu() {
     let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
     assert_eq!(lines.len(), 1, "{stderr}");
     assert!(lines[0].contains("no GPU adapter found"), "{stderr}");
-    assert!(lines[0].contains("apt-get install -y mesa-vulkan-drivers"), "{stderr}");
-    assert!(!dir.path().join("gpu").exists(), "a failed render left a folder");
+    assert!(
+        lines[0].contains("apt-get install -y mesa-vulkan-drivers"),
+        "{stderr}"
+    );
+    assert!(
+        !dir.path().join("gpu").exists(),
+        "a failed render left a folder"
+    );
     let auto = dir.path().join("auto");
     let out = render("auto", true, &auto);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert_eq!(device_of(&auto)["name"], "cpu");
 }
 

@@ -50,7 +50,12 @@ pub fn uniform(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer
 }
 
 /// Copies the first `bytes` of `buffer` back to the CPU (blocks until the GPU is done).
-pub fn read(device: &wgpu::Device, queue: &wgpu::Queue, buffer: &wgpu::Buffer, bytes: usize) -> Vec<u8> {
+pub fn read(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    bytes: usize,
+) -> Vec<u8> {
     if bytes == 0 {
         return Vec::new();
     }
@@ -75,10 +80,7 @@ pub fn read(device: &wgpu::Device, queue: &wgpu::Queue, buffer: &wgpu::Buffer, b
     rx.recv()
         .expect("map callback")
         .expect("the GPU could not map a readback buffer");
-    let out = slice
-        .get_mapped_range()
-        .expect("a mapped readback buffer")[..bytes]
-        .to_vec();
+    let out = slice.get_mapped_range().expect("a mapped readback buffer")[..bytes].to_vec();
     staging.unmap();
     out
 }

@@ -87,7 +87,13 @@ impl GpuDevice {
         };
         let found = adapters
             .iter()
-            .map(|a| format!("{} ({})", a.get_info().name, kind_name(a.get_info().device_type)))
+            .map(|a| {
+                format!(
+                    "{} ({})",
+                    a.get_info().name,
+                    kind_name(a.get_info().device_type)
+                )
+            })
             .collect::<Vec<_>>();
         let adapter = adapters
             .into_iter()

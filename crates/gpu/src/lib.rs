@@ -13,6 +13,9 @@
 //!    scattering; WGSL files named after the CPU files they port);
 //! 5. resolve: subsamples averaged into pixels on the GPU ([`resolve`]).
 //!
+//! [`bench`] times it on the paper's workload (`cuticle bench render --device gpu`), with GPU
+//! timestamps where the adapter has them; [`strands`] holds the per-strand records.
+//!
 //! Only what an edit changes is redone: a hair-parameter or paint edit re-runs shading and
 //! resolve ([`GpuRenderer::shade`], [`GpuRenderer::update_strands`]); a camera or light move
 //! needs a new [`GpuRenderer::prepare`]. [`GpuFrame::passes`] counts what ran.
@@ -35,6 +38,7 @@
 //! let painted = gpu.shade(&mut frame, &scene); // keeps painted strands while the scene's
 //!                                              // absorption (hair.mu_a, default_mu_a) stays
 //! let ids = gpu.visibility(&frame); // strand id per subsample, for picking strands to paint
+//!                                   // (from the CPU's visibility buffer while drawing is there)
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //! Every call blocks until the GPU is done; a window calls them from its render worker.
@@ -57,7 +61,6 @@ pub mod tables;
 
 pub use choice::{Backend, Choice};
 pub use device::{AdapterSummary, DeviceError, GpuDevice, Preference};
-pub use frame::{GpuFrame, Passes, Visibility};
-pub use frame::GpuSeconds;
+pub use frame::{GpuFrame, GpuSeconds, Passes, Visibility};
 pub use renderer::{GpuError, GpuRenderer};
 pub use strands::{StrandError, StrandParams};

@@ -139,16 +139,23 @@ impl GpuRenderer {
         let image_buffer = buffers::output(device, "image", cov.width * cov.height * 16);
         let coverage_buffer =
             buffers::storage(device, "visibility", bytemuck::cast_slice(&coverage), false);
-        let background_buffer =
-            buffers::storage(device, "background", bytemuck::cast_slice(&background), false);
+        let background_buffer = buffers::storage(
+            device,
+            "background",
+            bytemuck::cast_slice(&background),
+            false,
+        );
         let resolve_params = ResolveParams {
             width: cov.width as u32,
             height: cov.height as u32,
             ss: cov.ss as u32,
             _pad: 0,
         };
-        let resolve_params_buffer =
-            buffers::uniform(device, "resolve params", bytemuck::bytes_of(&resolve_params));
+        let resolve_params_buffer = buffers::uniform(
+            device,
+            "resolve params",
+            bytemuck::bytes_of(&resolve_params),
+        );
         let resolve_group = bind_group(
             device,
             &self.resolve,
@@ -276,19 +283,41 @@ impl GpuRenderer {
         });
         let start = Instant::now();
         let (gx, gy) = shading::workgroups(frame.params.visible as usize);
-        self.submit_pass(&self.shade, group, (gx, gy), frame.stopwatch.as_ref(), 0, false);
+        self.submit_pass(
+            &self.shade,
+            group,
+            (gx, gy),
+            frame.stopwatch.as_ref(),
+            0,
+            false,
+        );
         self.wait();
         frame.passes.shading += 1;
         frame.timings.shading = start.elapsed().as_secs_f64();
         let start = Instant::now();
-        let (w, h) = (frame.prepared.coverage.width, frame.prepared.coverage.height);
+        let (w, h) = (
+            frame.prepared.coverage.width,
+            frame.prepared.coverage.height,
+        );
         let tiles = (
             (w as u32).div_ceil(resolve::TILE),
             (h as u32).div_ceil(resolve::TILE),
         );
         let stopwatch = frame.stopwatch.as_ref();
-        self.submit_pass(&self.resolve, &frame.resolve_group, tiles, stopwatch, 1, true);
-        let bytes = buffers::read(&self.gpu.device, &self.gpu.queue, &frame.image_buffer, w * h * 16);
+        self.submit_pass(
+            &self.resolve,
+            &frame.resolve_group,
+            tiles,
+            stopwatch,
+            1,
+            true,
+        );
+        let bytes = buffers::read(
+            &self.gpu.device,
+            &self.gpu.queue,
+            &frame.image_buffer,
+            w * h * 16,
+        );
         frame.passes.resolve += 1;
         frame.timings.resolve = start.elapsed().as_secs_f64();
         frame.gpu_seconds = stopwatch.map(|s| {
@@ -315,7 +344,11 @@ impl GpuRenderer {
         let hair = &scene.spec.hair;
         let fiber = hair.fiber(None);
         let lobes = self.cpu.lobe_table(&fiber);
-        if frame.lobes.as_ref().is_none_or(|(l, _)| !Arc::ptr_eq(l, &lobes)) {
+        if frame
+            .lobes
+            .as_ref()
+            .is_none_or(|(l, _)| !Arc::ptr_eq(l, &lobes))
+        {
             let packed = tables::lobe_grids(&lobes);
             let buffer = self.table_buffer("lobe table", &packed.data);
             packed.describe(&mut frame.params.grids);
@@ -325,7 +358,11 @@ impl GpuRenderer {
         }
         if scene.spec.multiple {
             let back = self.cpu.back_scattering(&fiber, hair.d_b);
-            if frame.back.as_ref().is_none_or(|(b, _)| !Arc::ptr_eq(b, &back)) {
+            if frame
+                .back
+                .as_ref()
+                .is_none_or(|(b, _)| !Arc::ptr_eq(b, &back))
+            {
                 let packed = tables::back_grid(&back);
                 let buffer = self.table_buffer("back-scattering tables", &packed.data);
                 packed.describe(&mut frame.params.grids);
@@ -407,7 +444,13 @@ impl GpuRenderer {
             strand: cov
                 .segment
                 .iter()
-                .map(|&s| if s == EMPTY { Visibility::EMPTY } else { of[s as usize] })
+                .map(|&s| {
+                    if s == EMPTY {
+                        Visibility::EMPTY
+                    } else {
+                        of[s as usize]
+                    }
+                })
                 .collect(),
         }
     }

@@ -62,11 +62,7 @@ impl StrandSource {
 pub fn derive(scene: &Scene) -> Vec<StrandParams> {
     (0..scene.groom.strand_count())
         .map(|s| {
-            let mu = scene
-                .spec
-                .hair
-                .fiber(scene.groom.appearance().get(s))
-                .mu_a;
+            let mu = scene.spec.hair.fiber(scene.groom.appearance().get(s)).mu_a;
             StrandParams::new([mu.x as f32, mu.y as f32, mu.z as f32])
         })
         .collect()

@@ -14,11 +14,11 @@
 use bytemuck::{Pod, Zeroable};
 use cuticle_render::srbf::circular_gaussian::width_table;
 use cuticle_render::tables::back_scattering::BackScatteringTables;
+use cuticle_render::tables::cg_integrals::Tables;
 use cuticle_render::tables::grid::Grid2;
 use cuticle_render::tables::half_circle::HalfCircle;
 use cuticle_render::tables::lobe_table::LobeTable;
 use cuticle_render::tables::spread::SpreadNormalisation;
-use cuticle_render::tables::cg_integrals::Tables;
 
 /// Where one grid lies in its buffer: `nx × ny` nodes of `n` values from `offset` (in f32s),
 /// node (i, j) at `offset + (i ny + j) n`, over [x0, x1] × [y0, y1].
@@ -63,8 +63,11 @@ impl Packed {
     pub fn push<const N: usize>(&mut self, slot: usize, grid: &Grid2<N>) {
         let layout = grid.layout();
         let offset = self.data.len() as u32;
-        self.data
-            .extend(grid.values().iter().flat_map(|v| v.iter().map(|&x| x as f32)));
+        self.data.extend(
+            grid.values()
+                .iter()
+                .flat_map(|v| v.iter().map(|&x| x as f32)),
+        );
         self.grids.push((
             slot,
             GridDesc {

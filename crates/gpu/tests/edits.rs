@@ -6,8 +6,8 @@ mod common;
 
 use common::{cpu, device, gpu, hair_pixels, load, relative_rmse, spec};
 use cuticle_gpu::{GpuRenderer, Passes, StrandError, StrandParams, Visibility};
-use cuticle_render::Renderer;
 use cuticle_groom::Absorption;
+use cuticle_render::Renderer;
 
 #[test]
 fn a_hair_edit_reshades_without_redrawing() {
@@ -81,7 +81,10 @@ fn updating_one_strand_changes_only_its_pixels() {
         }
     }
     assert!(touched > 20, "strand {s} covers only {touched} pixels");
-    assert!(changed * 10 >= touched * 9, "{changed} of {touched} pixels changed");
+    assert!(
+        changed * 10 >= touched * 9,
+        "{changed} of {touched} pixels changed"
+    );
     // The CPU renderer with the strand's appearance painted the same way agrees.
     let mut painted = scene.clone();
     painted.groom.appearance_mut()[s].absorption = Some(Absorption::SigmaA(paint));

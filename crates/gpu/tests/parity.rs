@@ -21,7 +21,10 @@ fn compare(scene: &Scene, label: &str) -> f64 {
     let (want, _, _) = cpu().render(scene);
     let (got, frame) = gpu().render(scene).expect("GPU render");
     let mask = hair_pixels(&gpu().visibility(&frame));
-    assert!(got.pixels.iter().all(|p| p.is_finite()), "{label}: non-finite pixel");
+    assert!(
+        got.pixels.iter().all(|p| p.is_finite()),
+        "{label}: non-finite pixel"
+    );
     let e = relative_rmse(&got, &want, &mask);
     let worst = worst_relative(&got, &want);
     eprintln!(
@@ -85,4 +88,43 @@ fn eccentric_fiber_matches_the_cpu() {
     s.hair.eccentricity = 0.85;
     let e = compare(&load(s), "sky, eccentric 0.85, single + multiple");
     assert!(e < 5e-3, "{e}");
+}
+
+/// Zero-length segments, one-point strands and an empty groom render finite pixels equal to the
+/// CPU's within the worst-pixel bound (the empty groom: its background, read back in f32).
+#[test]
+fn degenerate_grooms_render() {
+    use cuticle_groom::{Groom, GroomParts};
+    use glam::Vec3;
+    let odd = Groom::from_parts(GroomParts {
+        positions: vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, -5.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ],
+        thickness: vec![0.05; 6],
+        strand_offsets: vec![0, 3, 4, 6],
+        ..GroomParts::default()
+    })
+    .unwrap();
+    let empty = Groom::from_parts(GroomParts {
+        strand_offsets: vec![0],
+        ..GroomParts::default()
+    })
+    .unwrap();
+    let base = load(spec(10, "default", 4));
+    for (name, groom) in [("odd", odd), ("empty", empty)] {
+        let mut s = base.spec.clone();
+        s.width = 48;
+        s.height = 32;
+        let scene = Scene::from_parts(s, groom, base.env.clone(), base.lights.clone());
+        let (want, _, _) = cpu().render(&scene);
+        let (got, _) = gpu().render(&scene).unwrap();
+        assert!(got.pixels.iter().all(|p| p.is_finite()), "{name}");
+        let worst = worst_relative(&got, &want);
+        assert!(worst < 1e-2, "{name}: {worst}");
+    }
 }

@@ -54,7 +54,12 @@ pub fn cpu_json() -> Value {
 }
 
 /// The GPU benchmark.
-pub fn bench(device: &GpuDevice, cpu: &Renderer, scene: &Scene, frames: usize) -> Result<GpuBenchReport> {
+pub fn bench(
+    device: &GpuDevice,
+    cpu: &Renderer,
+    scene: &Scene,
+    frames: usize,
+) -> Result<GpuBenchReport> {
     let gpu = GpuRenderer::new(device, cpu);
     Ok(cuticle_gpu::bench::run(&gpu, scene, frames)?)
 }
@@ -87,9 +92,14 @@ pub fn bench_json(device: &GpuDevice, r: &GpuBenchReport) -> Value {
 /// The GPU benchmark's summary line.
 pub fn print_bench(device: &GpuDevice, r: &GpuBenchReport) {
     let f = &r.full;
-    let stamps = r.rerender_gpu.map_or("no timestamp queries on this adapter".to_string(), |g| {
-        format!("GPU timestamps: shading {:.4} s, resolve {:.4} s", g.shading, g.resolve)
-    });
+    let stamps = r
+        .rerender_gpu
+        .map_or("no timestamp queries on this adapter".to_string(), |g| {
+            format!(
+                "GPU timestamps: shading {:.4} s, resolve {:.4} s",
+                g.shading, g.resolve
+            )
+        });
     println!(
         "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} and shadows {:.3} on the CPU, upload {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.4} s (shading {:.4}, resolve {:.4}), {:.1} frames/s; {stamps}",
         device.summary.name,

@@ -107,7 +107,13 @@ pub fn run(args: Args) -> Result<()> {
             let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
             progress.finish_and_clear();
             let cov = prepared.coverage.covered_fraction();
-            (image, prepared.points.len(), cov, timings, device::cpu_json())
+            (
+                image,
+                prepared.points.len(),
+                cov,
+                timings,
+                device::cpu_json(),
+            )
         }
         Backend::Gpu(d) => {
             let r = device::render(d, &renderer, &scene)?;

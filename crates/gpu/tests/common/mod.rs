@@ -13,9 +13,11 @@ use std::sync::OnceLock;
 pub fn device() -> &'static GpuDevice {
     static D: OnceLock<GpuDevice> = OnceLock::new();
     D.get_or_init(|| {
-        GpuDevice::new(Preference::Any).unwrap_or_else(|e| {
+        let d = GpuDevice::new(Preference::Any).unwrap_or_else(|e| {
             panic!("the GPU tests need a GPU adapter, hardware or software: {e}")
-        })
+        });
+        eprintln!("adapter: {:?}", d.summary);
+        d
     })
 }
 
@@ -87,7 +89,10 @@ pub fn relative_rmse(a: &Image, b: &Image, mask: &[bool]) -> f64 {
             den += pb.length_squared();
         }
     }
-    assert!(den > 0.0, "no hair pixels: the comparison would compare nothing");
+    assert!(
+        den > 0.0,
+        "no hair pixels: the comparison would compare nothing"
+    );
     (num / den).sqrt()
 }
 
