@@ -213,7 +213,9 @@ impl GpuRenderer {
     /// Refuses buffers over the device's limits with a clear error (wgpu would panic).
     fn check_sizes(&self, sizes: &[(&'static str, usize)]) -> Result<(), GpuError> {
         let limits = self.gpu.device.limits();
-        let limit = (limits.max_storage_buffer_binding_size as u64).min(limits.max_buffer_size);
+        let limit = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
         match sizes.iter().find(|(_, bytes)| *bytes as u64 > limit) {
             Some(&(what, bytes)) => Err(GpuError::TooLarge {
                 what,
