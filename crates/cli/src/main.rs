@@ -35,7 +35,10 @@ enum Command {
     /// Environment light: fit an environment map with J SRBF lights (fit).
     Env(commands::env::Args),
     /// Render a groom under environment light (Xu et al. 2011's SRBF renderer, or --method brute).
-    Render(commands::render::Args),
+    Render(Box<commands::render::Args>),
+    /// Two renders' output folders against each other over the hair: per-channel means, ratio,
+    /// relative RMSE, for the whole hair and its bottom fifth (compare.json).
+    Compare(commands::compare::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),
     /// Benchmarks: the renderer on the paper's workload (render).
@@ -52,8 +55,9 @@ fn main() {
         Command::Sim(args) => commands::sim::run(args),
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Env(args) => commands::env::run(args),
-        Command::Render(args) => commands::render::run(args),
+        Command::Render(args) => commands::render::run(*args),
         Command::Validate(args) => commands::validate::run(args),
+        Command::Compare(args) => commands::compare::run(args),
         Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {

@@ -9,8 +9,10 @@
 
 use crate::attenuation::attenuation;
 use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
 use crate::special::{GaussLegendre, normal_pdf};
+use crate::tilted_attenuation::{tilted_attenuation, tilted_reflectance};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -45,6 +47,9 @@ pub struct AzimuthalScattering {
     pub mu_a: DVec3,
     /// Azimuthal variances v_{p,N} for p = 1, 2, 3 (index 0 unused: R has no azimuthal blur).
     pub v_n: [f64; 4],
+    /// The scale tilt α (radians) A(p, h) is taken at: 0 for d'Eon et al. 2011's smooth fiber,
+    /// else through the tilted scales of [`crate::tilted_attenuation`].
+    pub scale_tilt: f64,
 }
 
 impl AzimuthalScattering {
@@ -55,12 +60,33 @@ impl AzimuthalScattering {
             eta,
             mu_a,
             v_n: [0.0, 0.5 * b2, 2.0 * b2, 2.0 * b2],
+            scale_tilt: 0.0,
         }
+    }
+
+    /// The same terms with A(p, h) taken through scales tilted by `alpha` (radians).
+    pub fn with_scale_tilt(mut self, alpha: f64) -> Self {
+        self.scale_tilt = alpha;
+        self
     }
 
     /// A(p, h) for all lobes at inclination θ_i.
     pub fn attenuation(&self, theta_i: f64, h: f64) -> LobeValues {
-        attenuation(theta_i, h, self.eta, self.mu_a)
+        if self.scale_tilt == 0.0 {
+            attenuation(theta_i, h, self.eta, self.mu_a)
+        } else {
+            tilted_attenuation(theta_i, h, self.eta, self.scale_tilt, self.mu_a).lobes
+        }
+    }
+
+    /// A(0, h) alone: the Fresnel factor, at the tilted micro-normal when there is a tilt.
+    fn reflectance(&self, theta_i: f64, h: f64) -> f64 {
+        let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
+        if self.scale_tilt == 0.0 {
+            fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta)
+        } else {
+            tilted_reflectance(theta_i, h, self.eta, self.scale_tilt)
+        }
     }
 
     /// The probabilities of choosing each lobe at offset h: proportional to the channel mean
@@ -93,12 +119,7 @@ impl AzimuthalScattering {
         let jac = 0.25 * (0.5 * phi).cos();
         match weighting {
             // A(0, h) is the Fresnel factor alone: no need for the other lobes' absorption.
-            Weighting::Attenuation => {
-                let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
-                DVec3::splat(
-                    jac * crate::fresnel::fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta),
-                )
-            }
+            Weighting::Attenuation => DVec3::splat(jac * self.reflectance(theta_i, h)),
             Weighting::Selection => jac * weight(&self.attenuation(theta_i, h), 0, weighting),
         }
     }
@@ -168,12 +189,13 @@ fn deflection_slope_bound(p: usize, eta_p: f64) -> f64 {
     2.0f64.max(2.0 * p as f64 / eta_p - 2.0)
 }
 
-/// The selection probabilities of the five lobes from their attenuations.
+/// The selection probabilities of the five lobes from their attenuations; none at an offset
+/// that sends nothing anywhere (tilted scales can lose all of it), whose draws are refused.
 pub fn selection_from(a: &LobeValues) -> [f64; 5] {
     let m = a.0.map(channel_mean);
     let total: f64 = m.iter().sum();
     if total <= 0.0 {
-        return [1.0, 0.0, 0.0, 0.0, 0.0];
+        return [0.0; 5];
     }
     m.map(|x| x / total)
 }

@@ -42,6 +42,16 @@ pub struct DEon2011 {
 
 impl DEon2011 {
     pub fn new(params: FiberParams) -> Result<Self, ParamError> {
+        let azimuthal = AzimuthalScattering::new(params.eta, params.beta, params.mu_a);
+        Self::with_azimuthal(params, azimuthal)
+    }
+
+    /// The model's lobes with other azimuthal terms (the non-separable model's, whose A(p, h)
+    /// may be taken through tilted scales).
+    pub(crate) fn with_azimuthal(
+        params: FiberParams,
+        azimuthal: AzimuthalScattering,
+    ) -> Result<Self, ParamError> {
         params.validate()?;
         let (b, e, a) = (params.beta, params.eta, params.alpha);
         let lobe = |width: f64, shift: f64| ((b * width).powi(2), shift * a);
@@ -53,7 +63,6 @@ impl DEon2011 {
             trrt,
             trrt,
         ];
-        let azimuthal = AzimuthalScattering::new(params.eta, params.beta, params.mu_a);
         let prepared = std::array::from_fn(|p| {
             let (v, shift) = longitudinal[p];
             let (sin_shift, cos_shift) = shift.sin_cos();

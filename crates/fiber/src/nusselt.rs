@@ -76,6 +76,116 @@ pub fn exit_trt(alphas: [f64; 3], eta: f64, incident: Nusselt) -> f64 {
     refract_out(alphas[2], eta, reflected).0
 }
 
+/// Why a step of the rotation sequence has no outgoing direction. The clamped maps above turn
+/// each of these into a finite but unphysical (x, y); [`AtScale`] reports them instead.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Blocked {
+    /// The arriving direction lies behind the tilted scale it meets (its cosine to the
+    /// micro-normal is not positive): a shading normal has no light from behind.
+    BackFacing,
+    /// Reflected or refracted at the micro-normal, the direction points to the wrong side of
+    /// the macro surface (outward for a refraction inward, and so on).
+    WrongSide,
+    /// Leaving the fiber, the transmitted direction is evanescent: η²(x_m² + y²) ≥ 1 in the
+    /// scale's frame, before the final rotation back to the macro-normal.
+    TotalInternalReflection,
+}
+
+/// A direction arriving at a scale tilted by α, in that scale's frame: (x_m, y) and the cosine
+/// z_m = √(1 − x_m² − y²) to the micro-normal kept with its sign, which the rotation Q drops.
+/// The arriving direction points away from the surface, on the side the ray comes from (the
+/// Nusselt convention of d'Eon et al. 2014 §2.2), with z > 0 to the macro-normal on that side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AtScale {
+    pub x: f64,
+    pub y: f64,
+    /// Cosine to the micro-normal: the Fresnel factor's argument.
+    pub cos: f64,
+    alpha: f64,
+    inside: bool,
+}
+
+/// Q with the normal component kept: the rotation (x, z) → (x cos α − z sin α, x sin α + z cos α).
+fn rotate_signed(alpha: f64, x: f64, z: f64) -> (f64, f64) {
+    let (s, c) = alpha.sin_cos();
+    (x * c - z * s, x * s + z * c)
+}
+
+impl AtScale {
+    /// `d` arriving from outside at a scale tilted by α (the sign of §2.3, as the maps above).
+    pub fn outside(alpha: f64, d: Nusselt) -> Result<Self, Blocked> {
+        Self::new(alpha, d, false)
+    }
+
+    /// `d` arriving from inside the fiber.
+    pub fn inside(alpha: f64, d: Nusselt) -> Result<Self, Blocked> {
+        Self::new(alpha, d, true)
+    }
+
+    fn new(alpha: f64, (x, y): Nusselt, inside: bool) -> Result<Self, Blocked> {
+        let z = (1.0 - x * x - y * y).max(0.0).sqrt();
+        // Outside the micro frame is the macro frame turned by α (reflect_outside's inner
+        // rotation), inside by −α.
+        let turn = if inside { -alpha } else { alpha };
+        let (xm, cos) = rotate_signed(turn, x, z);
+        if cos <= 0.0 {
+            return Err(Blocked::BackFacing);
+        }
+        Ok(Self {
+            x: xm,
+            y,
+            cos,
+            alpha,
+            inside,
+        })
+    }
+
+    /// From the scale's frame back to the macro-normal's on `inside`'s side of the surface;
+    /// `WrongSide` where the direction points through the macro surface.
+    fn in_macro_frame(&self, (x, y): Nusselt, z: f64, inside: bool) -> Result<Nusselt, Blocked> {
+        let turn = if inside { self.alpha } else { -self.alpha };
+        let (x, z) = rotate_signed(turn, x, z);
+        if z <= 0.0 {
+            return Err(Blocked::WrongSide);
+        }
+        Ok((x, y))
+    }
+
+    /// The mirror direction (R[α] from outside, R′[α] from inside), on the arriving side.
+    pub fn reflect(&self) -> Result<Nusselt, Blocked> {
+        self.in_macro_frame((-self.x, -self.y), self.cos, self.inside)
+    }
+
+    /// The refracted direction on the far side (T[α] going in, T′[α] going out): the scale's
+    /// tangential components scaled by n_near / n_far, `TotalInternalReflection` where they
+    /// leave no real normal component.
+    pub fn refract(&self, eta: f64) -> Result<Nusselt, Blocked> {
+        let k = if self.inside { eta } else { 1.0 / eta };
+        let (x, y) = (-self.x * k, -self.y * k);
+        let z2 = 1.0 - x * x - y * y;
+        if z2 <= 0.0 {
+            return Err(Blocked::TotalInternalReflection);
+        }
+        self.in_macro_frame((x, y), z2.sqrt(), !self.inside)
+    }
+}
+
+/// The TT exit direction for tilts α₁, α₂ through the full rotation sequence, or why there is
+/// none: the checked twin of [`exit_tt`].
+pub fn exit_tt_checked(alphas: [f64; 2], eta: f64, incident: Nusselt) -> Result<Nusselt, Blocked> {
+    let inside = propagate(AtScale::outside(alphas[0], incident)?.refract(eta)?);
+    AtScale::inside(alphas[1], inside)?.refract(eta)
+}
+
+/// The TRT exit direction for tilts α₁, α₂, α₃, or why there is none: the checked twin of
+/// [`exit_trt`]. A totally reflected second event is a reflection like any other here (its
+/// Fresnel factor is 1).
+pub fn exit_trt_checked(alphas: [f64; 3], eta: f64, incident: Nusselt) -> Result<Nusselt, Blocked> {
+    let inside = propagate(AtScale::outside(alphas[0], incident)?.refract(eta)?);
+    let reflected = propagate(AtScale::inside(alphas[1], inside)?.reflect()?);
+    AtScale::inside(alphas[2], reflected)?.refract(eta)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -103,5 +213,51 @@ mod tests {
         assert!((tt0 + (eta * zp - z)).abs() < 1e-7 && (tt1 + (eta * zp - z)).abs() < 1e-7);
         let trt1 = d(&|a| exit_trt([0.0, a, 0.0], eta, (x, y)));
         assert!((trt1 + 2.0 * eta * zp).abs() < 1e-7, "{trt1}");
+    }
+
+    /// Where nothing blocks the path, the checked sequence is the paper's.
+    #[test]
+    fn checked_sequences_agree_with_the_clamped_ones_where_the_path_is_open() {
+        let eta = 1.55;
+        let mut open = 0;
+        for (alpha, x, y) in [
+            (0.03, 0.4, 0.3),
+            (-0.07, -0.8, 0.1),
+            (0.05, 0.9, -0.2),
+            (0.0, 0.2, 0.9),
+            (0.02, -0.3, -0.6),
+        ] {
+            let alphas = [alpha; 3];
+            if let Ok(tt) = exit_tt_checked([alpha; 2], eta, (x, y)) {
+                assert!((tt.0 - exit_tt([alpha; 2], eta, (x, y))).abs() < 1e-14);
+                assert!((tt.1 + y).abs() < 1e-14, "y is reversed");
+                open += 1;
+            }
+            if let Ok(trt) = exit_trt_checked(alphas, eta, (x, y)) {
+                assert!((trt.0 - exit_trt(alphas, eta, (x, y))).abs() < 1e-14);
+                open += 1;
+            }
+            let r = AtScale::outside(alpha, (x, y)).unwrap().reflect().unwrap();
+            assert!((r.0 - exit_r(alpha, (x, y))).abs() < 1e-14);
+        }
+        assert!(open >= 6, "{open}");
+    }
+
+    /// The clamp hides an evanescent exit: at θ_i = 1.1, α = 2°, h = 0.8 the TT exit is totally
+    /// reflected, yet the clamped x stays within [−1, 1].
+    #[test]
+    fn the_clamp_hides_total_internal_reflection_that_the_checked_sequence_reports() {
+        let (eta, alpha, theta, h) = (1.55, 2f64.to_radians(), 1.1f64, 0.8);
+        let incident = (theta.sin(), h * theta.cos());
+        assert!(exit_tt([alpha; 2], eta, incident).abs() <= 1.0);
+        assert_eq!(
+            exit_tt_checked([alpha; 2], eta, incident),
+            Err(Blocked::TotalInternalReflection)
+        );
+        // A scale tilted toward +u is met from behind by light grazing from −u.
+        assert_eq!(
+            AtScale::outside(0.2, (-0.99, 0.0)),
+            Err(Blocked::BackFacing)
+        );
     }
 }

@@ -9,8 +9,13 @@
 //! with `cuticle furnace --model nonseparable`), and the test holds it to that.
 //! The grid runs on the tabulated fast path (whose error against direct quadrature the table's
 //! own tests bound); one configuration also runs on direct quadrature.
+//!
+//! With tilted scales the fiber is no longer white (issue 14): the tilted non-separable model
+//! integrates to the budget its A(p, h) gives, 1 minus what the scales remove, and the furnace
+//! finds that budget; `tilted_scales_lose_what_the_budget_says` prints how much is lost.
 
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
+use cuticle_fiber::nonseparable::Scales;
 use cuticle_fiber::{DEon2011, FiberModel, FiberParams, NonSeparable};
 use glam::DVec3;
 
@@ -84,4 +89,54 @@ fn nonseparable_conserves_energy() {
 fn direct_quadrature_conserves_energy_too() {
     check(&DEon2011::new(lossless(0.15)).unwrap(), 0.15, &[0.5]);
     check(&NonSeparable::new(lossless(0.15)).unwrap(), 0.15, &[1.0]);
+}
+
+/// The furnace of the tilted model finds the budget (1 − losses) within 1 % of the incident
+/// power over θ_i ∈ {−0.25, 0.75, 1.1, 1.3} × α ∈ {±2°, ±4°} at β = 0.04, and the losses are
+/// large where the simulator says they are; the paper's form stays white (to 1 %).
+/// Measured gaps: within 0.45 % except θ_i 0.75, α +4° (0.7307 against 0.7218), where TT's M–N
+/// coupling above adds 0.0073 (by direct quadrature too: TT's tilted cone moves θ_d, and with
+/// it η′, across φ) and the table's interpolation in θ_i 0.0034 to a TRT that dies there.
+/// The rule's own error reaches 0.0034 at θ_i 1.3: R's N has an edge in φ where the tilted
+/// scales start to hide the reflection, which the rule's φ panels resolve slowly.
+#[test]
+fn tilted_scales_lose_what_the_budget_says() {
+    let beta = 0.04;
+    println!("  α     θ_i   lost (budget)   albedo   expected");
+    for alpha_deg in [-4.0, -2.0, 2.0, 4.0] {
+        let params = FiberParams {
+            alpha: f64::to_radians(alpha_deg),
+            ..lossless(beta)
+        };
+        let model = NonSeparable::new(params).unwrap().tabulated();
+        let rule = FurnaceRule {
+            beta,
+            max_shift: 6.0 * params.alpha.abs(),
+            resolution: 1,
+        };
+        for theta_i in [-0.25, 0.75, 1.1, 1.3] {
+            let lost = model.energy_budget(theta_i).lost().x;
+            let est = albedo(&model, theta_i, rule);
+            let a = est.albedo.x;
+            println!(
+                "{alpha_deg:+.0}° {theta_i:+.2}   {lost:.4}   {a:.4}   {:.4}",
+                1.0 - lost
+            );
+            assert!(est.error_estimate.x < 0.005, "{est:?}");
+            assert!(
+                (a - (1.0 - lost)).abs() < 0.01,
+                "α {alpha_deg} θ_i {theta_i}: albedo {a}, budget {}",
+                1.0 - lost
+            );
+        }
+        if alpha_deg == 2.0 {
+            assert!(model.energy_budget(1.1).lost().x > 0.4);
+            let paper = NonSeparable::with_scales(params, Scales::Paper)
+                .unwrap()
+                .tabulated();
+            let white = albedo(&paper, 1.1, rule).albedo.x;
+            // Measured 1.0056: the pole cone and the M–N coupling, no loss.
+            assert!((white - 1.0).abs() < 0.01, "paper: {white}");
+        }
+    }
 }

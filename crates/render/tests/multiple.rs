@@ -96,10 +96,15 @@ fn global_gain(groom: Groom) -> f64 {
 
 /// One straight strand alone, across the lights: nothing lies between it and any light, so
 /// T_f − T̃ vanishes up to the deep opacity map's self-shadowing of a strand by its own
-/// neighbouring segments: its global gain stays under 2% of its single scattering (a global
-/// term that did not remove the direct share, d_f T_f, would add tens of percent).
+/// neighbouring segments, which takes a share `lost` of its single scattering (measured
+/// 0.154 here: 64 texels, a strand 0.6 texels thick). Forward scattering can only give back
+/// part of what the map took, d_f (e^{−n(1−ā_f)} − e^{−n}) < 1 − e^{−n}: its global gain stays
+/// below `lost` (measured 0.127), where a global term that did not remove the direct share,
+/// d_f T_f, would add about 0.7 of the single scattering. (Forward scattering once subtracted
+/// half a crossing for a point's own strand, which hid the map's self-shadowing here but
+/// took the global term from every point of a real groom: tests/slab.rs.)
 #[test]
-fn isolated_strand_gets_almost_no_global_multiple_scattering() {
+fn isolated_strand_gets_back_at_most_what_its_self_shadowing_took() {
     let strand = Groom::from_parts(GroomParts {
         positions: (0..12)
             .map(|i| Vec3::new(0.2 * i as f32 - 1.1, 0.0, 0.0))
@@ -109,8 +114,15 @@ fn isolated_strand_gets_almost_no_global_multiple_scattering() {
         ..GroomParts::default()
     })
     .unwrap();
+    let mut unshadowed = spec(false, 0.05);
+    unshadowed.shadows.density = 0.0;
+    let lost = 1.0
+        - total(&render(spec(false, 0.05), strand.clone()))
+            / total(&render(unshadowed, strand.clone()));
     let alone = global_gain(strand);
-    assert!((0.0..0.02).contains(&alone), "alone {alone}");
+    eprintln!("isolated strand: self-shadowing takes {lost:.3}, global term gives {alone:.3}");
+    assert!(lost > 0.0 && lost < 0.5, "lost {lost}");
+    assert!(alone > 0.0 && alone < lost, "alone {alone}, lost {lost}");
 }
 
 /// The brute force's scene: the environment the lights describe, as 6 n² directional lights.

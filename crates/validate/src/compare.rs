@@ -37,6 +37,14 @@ pub fn compare_config(
     Ok(figures_of(kind, &images, sim))
 }
 
+/// The same figures with each lobe's seed-to-seed L1 beside them ([`crate::noise`]).
+pub fn with_noise(mut figures: ConfigFigures, seed_to_seed: &[Option<f64>; 5]) -> ConfigFigures {
+    for (f, s) in figures.lobes.iter_mut().zip(seed_to_seed) {
+        f.seed_to_seed_l1 = *s;
+    }
+    figures
+}
+
 /// The figures of already rendered model images against `sim`.
 pub fn figures_of(
     kind: ModelKind,

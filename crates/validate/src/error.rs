@@ -16,7 +16,9 @@ pub enum ValidateError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("unknown model '{0}' (expected nonseparable, deon2011 or marschner)")]
+    #[error(
+        "unknown model '{0}' (expected nonseparable, nonseparable-paper, deon2011 or marschner)"
+    )]
     UnknownModel(String),
     #[error("model {model}: {message}")]
     Model {

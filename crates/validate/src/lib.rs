@@ -6,6 +6,8 @@
 //! centre); [`metrics`] compares them lobe by lobe (relative L1 error, energy difference, error
 //! in θ of the lobe's peak, [`peak`]); [`summary`] aggregates the figures of a whole sweep into
 //! the tables of `validation.md`, and [`sheet`] stacks images into Figure 7-like sheets.
+//! Given two simulations of each configuration with different seeds, [`noise`] measures the
+//! noise floor every figure sits on.
 //!
 //! ```no_run
 //! use cuticle_validate::{ModelKind, SimConfig, compare_config};
@@ -19,6 +21,7 @@ pub mod compare;
 pub mod error;
 pub mod metrics;
 pub mod models;
+pub mod noise;
 pub mod peak;
 pub mod pixel_integral;
 pub mod sheet;

@@ -18,12 +18,28 @@ pub struct LobeFigures {
     pub energy_sim: f64,
     /// Error in θ of the peak, radians; `None` where either lobe is black.
     pub peak_theta_error: Option<f64>,
+    /// The relative L1 between two simulations with different seeds, where the validation has
+    /// two ([`crate::noise`]); `None` otherwise.
+    pub seed_to_seed_l1: Option<f64>,
 }
 
 impl LobeFigures {
     /// energy_model − energy_sim.
     pub fn energy_difference(&self) -> f64 {
         self.energy_model - self.energy_sim
+    }
+
+    /// The relative L1 a perfect model would score against the reference: half the
+    /// seed-to-seed L1, the reference being the mean of the two runs ([`crate::noise`]).
+    pub fn noise_floor(&self) -> Option<f64> {
+        self.seed_to_seed_l1.map(|s| 0.5 * s)
+    }
+
+    /// The model's own error with the noise floor taken out in quadrature,
+    /// √max(L1² − floor², 0) ([`crate::noise`] says why and how far to trust it).
+    pub fn residual_l1(&self) -> Option<f64> {
+        let (l1, floor) = (self.relative_l1?, self.noise_floor()?);
+        Some((l1 * l1 - floor * floor).max(0.0).sqrt())
     }
 }
 
@@ -50,5 +66,6 @@ pub fn lobe_figures(model: &LatLongImage, sim: &LatLongImage) -> LobeFigures {
         energy_model: channel_mean(model.energy()),
         energy_sim: channel_mean(sim.energy()),
         peak_theta_error: peak_theta_error(model, sim),
+        seed_to_seed_l1: None,
     }
 }

@@ -9,14 +9,18 @@ use std::str::FromStr;
 /// A model under validation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum ModelKind {
+    /// With the losses of tilted scales (the fiber crate's default non-separable model).
     NonSeparable,
+    /// As d'Eon et al. 2014 specifies it.
+    NonSeparablePaper,
     DEon2011,
     Marschner,
 }
 
 impl ModelKind {
-    pub const ALL: [ModelKind; 3] = [
+    pub const ALL: [ModelKind; 4] = [
         ModelKind::NonSeparable,
+        ModelKind::NonSeparablePaper,
         ModelKind::DEon2011,
         ModelKind::Marschner,
     ];
@@ -25,6 +29,7 @@ impl ModelKind {
     pub const fn name(self) -> &'static str {
         match self {
             ModelKind::NonSeparable => "nonseparable",
+            ModelKind::NonSeparablePaper => "nonseparable-paper",
             ModelKind::DEon2011 => "deon2011",
             ModelKind::Marschner => "marschner",
         }
@@ -40,6 +45,11 @@ impl ModelKind {
         Ok(match self {
             ModelKind::NonSeparable => Box::new(
                 NonSeparable::new(*params)
+                    .map_err(|e| err(e.to_string()))?
+                    .tabulated(),
+            ),
+            ModelKind::NonSeparablePaper => Box::new(
+                NonSeparable::paper(*params)
                     .map_err(|e| err(e.to_string()))?
                     .tabulated(),
             ),

@@ -1,6 +1,7 @@
 //! The figures of a whole validation: one [`Row`] per (configuration, model, lobe), written as
-//! CSV, and the Markdown report's summary tables (by lobe, θ_i, α, β, per model) with the
-//! per-lobe verdict of the non-separable model against d'Eon 2011.
+//! CSV, and the Markdown report's summary tables (by lobe, θ_i, α, β, per model), with the noise
+//! floor beside every model figure where the validation has two runs per configuration
+//! ([`crate::noise`]), and the per-lobe verdicts ([`crate::summary_verdict`]).
 
 use crate::metrics::LobeFigures;
 use crate::models::ModelKind;
@@ -48,13 +49,13 @@ fn opt(v: Option<f64>) -> String {
 /// Every row as CSV; empty cells where a figure is undefined (a black simulated lobe).
 pub fn csv(rows: &[Row]) -> String {
     let mut s = String::from(
-        "config,theta_i,alpha_deg,beta,eta,mu_a,model,lobe,relative_l1,energy_model,energy_sim,energy_difference,peak_theta_error_deg\n",
+        "config,theta_i,alpha_deg,beta,eta,mu_a,model,lobe,relative_l1,energy_model,energy_sim,energy_difference,peak_theta_error_deg,seed_to_seed_l1,noise_floor,residual_l1\n",
     );
     for r in rows {
         let f = &r.figures;
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{}",
+            "{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{},{},{},{}",
             r.config,
             r.theta_i,
             r.alpha_deg,
@@ -68,6 +69,9 @@ pub fn csv(rows: &[Row]) -> String {
             f.energy_sim,
             f.energy_difference(),
             opt(f.peak_theta_error.map(f64::to_degrees)),
+            opt(f.seed_to_seed_l1),
+            opt(f.noise_floor()),
+            opt(f.residual_l1()),
         );
     }
     s
@@ -80,7 +84,26 @@ pub const MIN_SIM_ENERGY: f64 = 1e-3;
 
 /// The relative L1 a summary counts: `None` for a lobe the simulation leaves (nearly) black.
 pub fn counted_l1(r: &Row) -> Option<f64> {
-    (r.figures.energy_sim >= MIN_SIM_ENERGY).then_some(r.figures.relative_l1)?
+    counted(r, r.figures.relative_l1)
+}
+
+/// The noise floor of a counted figure.
+pub fn counted_floor(r: &Row) -> Option<f64> {
+    counted(r, r.figures.noise_floor())
+}
+
+/// The noise-corrected residual of a counted figure.
+pub fn counted_residual(r: &Row) -> Option<f64> {
+    counted(r, r.figures.residual_l1())
+}
+
+fn counted(r: &Row, v: Option<f64>) -> Option<f64> {
+    (r.figures.energy_sim >= MIN_SIM_ENERGY).then_some(v)?
+}
+
+/// Whether the rows carry a noise floor (the validation had two runs per configuration).
+pub fn has_noise(rows: &[Row]) -> bool {
+    rows.iter().any(|r| r.figures.seed_to_seed_l1.is_some())
 }
 
 /// Mean and median of the defined values.
@@ -118,9 +141,23 @@ fn cell(v: Option<(f64, f64)>) -> String {
         .unwrap_or_else(|| "–".into())
 }
 
-/// Per model and lobe: relative L1 (mean / median), mean |energy difference|, mean peak error.
+fn median_of(values: impl IntoIterator<Item = Option<f64>>) -> String {
+    mean_median(values)
+        .map(|(_, median)| format!("{median:.3}"))
+        .unwrap_or_else(|| "–".into())
+}
+
+/// Per model and lobe: relative L1 (mean / median), with the noise floor, the residual and
+/// their ratio (medians) where there is a floor, mean |energy difference|, mean peak error.
 fn by_lobe_table(rows: &[Row], out: &mut String) {
-    out.push_str("| model | lobe | relative L1 (mean / median) | mean abs energy diff | mean energy sim | peak θ error, deg (mean / median) |\n|---|---|---|---|---|---|\n");
+    let noise = has_noise(rows);
+    out.push_str("| model | lobe | relative L1 (mean / median) |");
+    if noise {
+        out.push_str(" noise floor (median) | residual (median) | residual / floor (median) |");
+    }
+    out.push_str(" mean abs energy diff | mean energy sim | peak θ error, deg (mean / median) |\n");
+    out.push_str(&"|---".repeat(if noise { 9 } else { 6 }));
+    out.push_str("|\n");
     for model in models_in(rows) {
         for lobe in ALL_LOBES {
             let sel: Vec<&Row> = rows
@@ -137,10 +174,23 @@ fn by_lobe_table(rows: &[Row], out: &mut String) {
                 sel.iter()
                     .map(|r| r.figures.peak_theta_error.map(f64::to_degrees)),
             );
+            let _ = write!(out, "| {model} | {lobe} | {} |", cell(l1));
+            if noise {
+                let ratio = sel.iter().map(|r| {
+                    let floor = counted_floor(r)?;
+                    (floor > 0.0).then(|| counted_residual(r).map(|x| x / floor))?
+                });
+                let _ = write!(
+                    out,
+                    " {} | {} | {} |",
+                    median_of(sel.iter().map(|r| counted_floor(r))),
+                    median_of(sel.iter().map(|r| counted_residual(r))),
+                    median_of(ratio)
+                );
+            }
             let _ = writeln!(
                 out,
-                "| {model} | {lobe} | {} | {:.4} | {:.4} | {} |",
-                cell(l1),
+                " {:.4} | {:.4} | {} |",
                 de.map_or(0.0, |v| v.0),
                 es.map_or(0.0, |v| v.0),
                 cell(pk)
@@ -149,17 +199,23 @@ fn by_lobe_table(rows: &[Row], out: &mut String) {
     }
 }
 
-/// Relative L1 (mean / median) of R, TT and TRT per model, grouped by one parameter.
+/// R, TT and TRT per model, grouped by one parameter: relative L1 (mean / median), or, where
+/// there is a noise floor, the floor of each lobe beside each model's median L1 and residual.
 fn by_parameter_table(rows: &[Row], name: &str, key: fn(&Row) -> f64, out: &mut String) {
     let models = models_in(rows);
+    let noise = has_noise(rows);
     let _ = write!(out, "| {name} |");
-    for m in &models {
-        for l in MAIN_LOBES {
+    for l in MAIN_LOBES {
+        if noise {
+            let _ = write!(out, " {l} floor |");
+        }
+        for m in &models {
             let _ = write!(out, " {m} {l} |");
         }
     }
     out.push('\n');
-    out.push_str(&"|---".repeat(1 + models.len() * MAIN_LOBES.len()));
+    let columns = MAIN_LOBES.len() * (models.len() + usize::from(noise));
+    out.push_str(&"|---".repeat(1 + columns));
     out.push_str("|\n");
     let mut groups: BTreeMap<i64, f64> = BTreeMap::new();
     for r in rows {
@@ -167,14 +223,26 @@ fn by_parameter_table(rows: &[Row], name: &str, key: fn(&Row) -> f64, out: &mut 
     }
     for value in groups.values() {
         let _ = write!(out, "| {value} |");
-        for m in &models {
-            for l in MAIN_LOBES {
-                let v = mean_median(
-                    rows.iter()
-                        .filter(|r| r.model == *m && r.lobe == l && key(r) == *value)
-                        .map(counted_l1),
-                );
-                let _ = write!(out, " {} |", cell(v));
+        for l in MAIN_LOBES {
+            let of = |m: &'static str| {
+                rows.iter()
+                    .filter(move |r| r.model == m && r.lobe == l && key(r) == *value)
+            };
+            if noise {
+                let floor = models.first().map(|m| median_of(of(m).map(counted_floor)));
+                let _ = write!(out, " {} |", floor.unwrap_or_default());
+            }
+            for m in &models {
+                if noise {
+                    let _ = write!(
+                        out,
+                        " {} ({}) |",
+                        median_of(of(m).map(counted_l1)),
+                        median_of(of(m).map(counted_residual))
+                    );
+                } else {
+                    let _ = write!(out, " {} |", cell(mean_median(of(m).map(counted_l1))));
+                }
             }
         }
         out.push('\n');
@@ -188,6 +256,9 @@ pub fn markdown(rows: &[Row], header: &str) -> String {
         out,
         "\n## Per model and lobe\n\nRelative L1 = Σ|model − sim|·Ω / Σ|sim|·Ω per lobe image, left out of these tables (not the CSV) where the simulated lobe's energy is below {MIN_SIM_ENERGY}; energies are ∫ S dω (channel mean); the peak θ error is the density-weighted mean over bright φ columns (`peak.rs`).\n\n"
     );
+    if has_noise(rows) {
+        out.push_str("Each configuration was simulated twice with different seeds; the models are compared with the mean of the two runs. Noise floor = half the seed-to-seed relative L1 (what a perfect model scores against that mean); residual = √(L1² − floor²), the model's own error (`crates/validate/src/noise.rs`). By-parameter tables: each lobe's floor, then each model's median L1 with its median residual in brackets.\n\n");
+    }
     by_lobe_table(rows, &mut out);
     type Key = fn(&Row) -> f64;
     let groups: [(&str, Key); 4] = [
@@ -197,10 +268,14 @@ pub fn markdown(rows: &[Row], header: &str) -> String {
         ("μ_a", |r| r.mu_a),
     ];
     for (name, key) in groups {
-        let _ = write!(out, "\n## Relative L1 by {name} (mean / median)\n\n");
+        let what = if has_noise(rows) {
+            "median; residual in brackets"
+        } else {
+            "mean / median"
+        };
+        let _ = write!(out, "\n## Relative L1 by {name} ({what})\n\n");
         by_parameter_table(rows, name, key, &mut out);
     }
-    out.push_str("\n## Non-separable against d'Eon 2011, per lobe\n\n");
-    out.push_str(&crate::summary_verdict::verdict(rows));
+    out.push_str(&crate::summary_verdict::verdicts(rows));
     out
 }

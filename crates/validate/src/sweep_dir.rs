@@ -26,6 +26,8 @@ pub struct SimConfig {
     pub eta: f64,
     pub mu_a: [f64; 3],
     pub rays: u64,
+    /// The simulation's random seed, where its record gives one.
+    pub seed: Option<u64>,
 }
 
 impl SimConfig {
@@ -69,7 +71,28 @@ impl SimConfig {
             eta: number("eta")?,
             mu_a,
             rays: record["rays"].as_u64().unwrap_or(0),
+            seed: params["seed"].as_u64(),
         })
+    }
+
+    /// Whether `other` simulates the same fiber and light with as many paths: what a second
+    /// run for the noise floor must do ([`crate::noise`]); its seed must differ.
+    pub fn same_setup(&self, other: &SimConfig) -> bool {
+        (
+            self.theta_i,
+            self.alpha_deg,
+            self.beta,
+            self.eta,
+            self.mu_a,
+            self.rays,
+        ) == (
+            other.theta_i,
+            other.alpha_deg,
+            other.beta,
+            other.eta,
+            other.mu_a,
+            other.rays,
+        )
     }
 
     /// The fiber the models are built for: α converted to radians with the simulator's sign.

@@ -8,14 +8,15 @@ use cuticle_gpu::{Backend, Choice, GpuDevice, GpuRenderer};
 use cuticle_render::{Image, Method, Renderer, Scene, Timings};
 use serde_json::{Value, json};
 
-/// Resolves `--device` for `method` before any work: the brute force runs on the CPU only.
+/// Resolves `--device` for `method` before any work: the brute force and the path tracer run
+/// on the CPU only.
 pub fn choose(choice: Choice, method: Method) -> Result<Backend> {
     match (method, choice) {
-        (Method::Brute, Choice::Gpu) => {
-            bail!("--method brute runs on the CPU only: use --device cpu or auto")
-        }
-        (Method::Brute, _) => Ok(Backend::Cpu),
         (Method::Srbf, choice) => Ok(Backend::choose(choice)?),
+        (_, Choice::Gpu) => {
+            bail!("--method {method:?} runs on the CPU only: use --device cpu or auto")
+        }
+        (_, _) => Ok(Backend::Cpu),
     }
 }
 

@@ -3,6 +3,7 @@
 
 use anyhow::{Context, Result, bail};
 use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::nonseparable::Scales;
 use cuticle_fiber::{DEon2011, FiberModel, FiberParams, Marschner2003, NonSeparable};
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -12,7 +13,10 @@ use serde_json::{Value, json};
 pub enum ModelName {
     Marschner,
     Deon2011,
+    /// The non-separable model with tilted scales' losses (the project's; see the fiber crate).
     Nonseparable,
+    /// The non-separable model as d'Eon et al. 2014 specifies it.
+    NonseparablePaper,
 }
 
 impl ModelName {
@@ -21,6 +25,7 @@ impl ModelName {
             ModelName::Marschner => "marschner",
             ModelName::Deon2011 => "deon2011",
             ModelName::Nonseparable => "nonseparable",
+            ModelName::NonseparablePaper => "nonseparable-paper",
         }
     }
 }
@@ -99,8 +104,13 @@ impl FiberArgs {
                     model.tabulated()
                 })
             }
-            ModelName::Nonseparable => {
-                let model = NonSeparable::new(params)?.with_iterations(self.iterations);
+            ModelName::Nonseparable | ModelName::NonseparablePaper => {
+                let scales = match self.model {
+                    ModelName::NonseparablePaper => Scales::Paper,
+                    _ => Scales::Tilted,
+                };
+                let model =
+                    NonSeparable::with_scales(params, scales)?.with_iterations(self.iterations);
                 Box::new(if self.direct {
                     model
                 } else {

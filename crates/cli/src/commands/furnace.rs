@@ -1,11 +1,14 @@
 //! `cuticle furnace`: the albedo ∫ S dω_o of a fiber model over a grid of θ_i (and of β when
-//! asked), by the deterministic quadrature of `cuticle_fiber::furnace`.
+//! asked), by the deterministic quadrature of `cuticle_fiber::furnace`, beside the albedo the
+//! model's A(p, h) says it must have: 1 for a lossless fiber, less with absorption, and less
+//! for the tilted non-separable model by what its tilted scales remove (issue 14).
 
-use crate::commands::fiber_args::FiberArgs;
+use crate::commands::fiber_args::{FiberArgs, ModelName};
 use crate::output::OutDir;
 use anyhow::{Result, bail};
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
 use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::tilted_attenuation::{TiltedAttenuation, energy_budget};
 use rayon::prelude::*;
 use serde_json::json;
 use std::path::PathBuf;
@@ -77,29 +80,54 @@ pub fn run(args: Args) -> Result<()> {
         .collect();
     progress.finish_and_clear();
     println!(
-        "{:>8} {:>8} {:>10} {:>10}",
-        "beta", "theta_i", "albedo", "± rule"
+        "{:>8} {:>8} {:>10} {:>10} {:>10} {:>10}",
+        "beta", "theta_i", "albedo", "± rule", "expected", "lost"
     );
-    for (beta, theta_i, est) in &results {
+    let budgets: Vec<Option<TiltedAttenuation>> = results
+        .iter()
+        .map(|(_, theta_i, _)| budget(&args.fiber, *theta_i))
+        .collect();
+    for ((beta, theta_i, est), b) in results.iter().zip(&budgets) {
+        let (expected, lost) = b.as_ref().map_or(("–".into(), "–".into()), |b| {
+            (
+                format!("{:.5}", channel_mean(b.lobes.total())),
+                format!("{:.5}", channel_mean(b.lost())),
+            )
+        });
         println!(
-            "{beta:>8.4} {theta_i:>8.3} {:>10.5} {:>10.1e}",
+            "{beta:>8.4} {theta_i:>8.3} {:>10.5} {:>10.1e} {expected:>10} {lost:>10}",
             channel_mean(est.albedo),
             channel_mean(est.error_estimate)
         );
     }
     let record = json!({
         "params": args.fiber.json(None)?,
-        "results": results.iter().map(|(beta, theta_i, est)| json!({
+        "results": results.iter().zip(&budgets).map(|((beta, theta_i, est), b)| json!({
             "theta_i": theta_i,
             "beta": beta,
             "albedo": channel_mean(est.albedo),
             "albedo_rgb": est.albedo.to_array(),
             "error_estimate": channel_mean(est.error_estimate),
             "evaluations": est.evaluations,
+            "expected_albedo": b.as_ref().map(|b| channel_mean(b.lobes.total())),
+            "lost_to_scales": b.as_ref().map(|b| channel_mean(b.lost())),
         })).collect::<Vec<_>>(),
         "seconds": start.elapsed().as_secs_f64(),
     });
     out.write_json("furnace.json", &record)?;
     println!("-> {}", args.out.join("furnace.json").display());
     Ok(())
+}
+
+/// ½ ∫ Σ_p A(p, h) dh and the losses for the models built on A(p, h): d'Eon 2011 and the
+/// paper's non-separable form on the untilted fiber's, the tilted form on its tilted scales';
+/// none for Marschner 2003 (its own attenuation, with no stated budget).
+fn budget(fiber: &FiberArgs, theta_i: f64) -> Option<TiltedAttenuation> {
+    let p = fiber.params().ok()?;
+    let tilt = match fiber.model {
+        ModelName::Marschner => return None,
+        ModelName::Nonseparable => p.alpha,
+        ModelName::Deon2011 | ModelName::NonseparablePaper => 0.0,
+    };
+    Some(energy_budget(theta_i, p.eta, tilt, p.mu_a))
 }

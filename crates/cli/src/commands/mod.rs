@@ -1,4 +1,5 @@
 pub mod device;
+pub mod compare;
 pub mod env;
 pub mod fiber_args;
 pub mod furnace;
@@ -7,4 +8,5 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod trace;
 pub mod validate;

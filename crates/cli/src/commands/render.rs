@@ -1,5 +1,6 @@
 //! `cuticle render`: the hair renderer of Xu et al. 2011 (crate cuticle-render) on a scene from flags
-//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear) and `render.json` with
+//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear), `coverage.exr` (each
+//! pixel's hair coverage, the mask `cuticle compare` reads) and `render.json` with
 //! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
 
@@ -12,6 +13,7 @@ use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use exr::prelude::*;
+use glam::DVec3;
 use serde_json::{Value, json};
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
@@ -27,14 +29,15 @@ pub struct Args {
     /// Strands of a preset groom.
     #[arg(long)]
     strands: Option<usize>,
-    /// `default` (procedural sky) or an .hdr/.exr lat-long map.
+    /// `default` (procedural sky), `constant:R,G,B` (uniform) or an .hdr/.exr lat-long map.
     #[arg(long)]
     env: Option<String>,
     /// Number J of SRBF lights to fit, or a lights.json from `cuticle env fit`.
     #[arg(long)]
     lights: Option<String>,
-    /// srbf (Xu et al. 2011) or brute (exact model, 6 n² directional lights).
-    #[arg(long, value_parser = ["srbf", "brute"])]
+    /// srbf (Xu et al. 2011), brute (exact model, 6 n² directional lights) or path (the path
+    /// tracer, flags --spp, --seed, --max-depth, --model and the fiber flags).
+    #[arg(long, value_parser = ["srbf", "brute", "path"])]
     method: Option<String>,
     /// Segments m of the linear quadrature.
     #[arg(long)]
@@ -77,13 +80,19 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "out/render")]
     out: PathBuf,
+    #[command(flatten)]
+    path: crate::commands::trace::PathArgs,
 }
 
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args)?;
     let backend = device::choose(args.device, spec.method)?;
+    if spec.method == Method::Path {
+        return crate::commands::trace::run(&args.path, spec, &args.out);
+    }
     let renderer = Renderer::new();
     let scene = Scene::load(spec, lights)?;
+    Renderer::accepts(&scene)?;
     eprintln!(
         "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}, on {}",
         scene.groom.strand_count(),
@@ -124,6 +133,10 @@ pub fn run(args: Args) -> Result<()> {
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
     out.write("image.exr", &exr_bytes(&image)?)?;
+    out.write(
+        "coverage.exr",
+        &exr_bytes(&coverage_image(&prepared.coverage))?,
+    )?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
@@ -159,6 +172,9 @@ pub enum Bench {
     /// The renderer on the paper's workload (default groom, 40 SRBF lights, 720x480, single and
     /// multiple scattering): medians of full frames and of re-renders after an absorption edit.
     Render(BenchArgs),
+    /// The path tracer: BVH build time, ray casting and path tracing rays/s and spp/s
+    /// (default: straight.hair at 360x240 under the procedural sky).
+    Trace(crate::commands::trace::TraceBenchArgs),
 }
 
 #[derive(clap::Args, Clone, Debug)]
@@ -182,7 +198,10 @@ pub struct BenchArgs {
 }
 
 pub fn bench(command: Bench) -> Result<()> {
-    let Bench::Render(args) = command;
+    let args = match command {
+        Bench::Render(args) => args,
+        Bench::Trace(args) => return crate::commands::trace::bench(&args),
+    };
     let mut spec = SceneSpec::default();
     args.strands.into_iter().for_each(|v| spec.strands = v);
     args.width.into_iter().for_each(|v| spec.width = v);
@@ -280,10 +299,10 @@ fn spec_from(args: &Args) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
         spec.env = e.clone();
     }
     if let Some(m) = &args.method {
-        spec.method = if m == "brute" {
-            Method::Brute
-        } else {
-            Method::Srbf
+        spec.method = match m.as_str() {
+            "brute" => Method::Brute,
+            "path" => Method::Path,
+            _ => Method::Srbf,
         };
     }
     spec.multiple = spec.multiple && !args.no_multiple;
@@ -343,6 +362,7 @@ fn multiple_json(scene: &Scene) -> Value {
         Method::Brute => {
             "exact azimuthal functions and Marschner lobes per directional light, integrated numerically"
         }
+        Method::Path => "every path, by path tracing",
     };
     json!({
         "enabled": scene.spec.multiple,
@@ -366,6 +386,19 @@ pub fn seconds_json(t: &Timings) -> Value {
     })
 }
 
+/// Each pixel's hair coverage (the fraction of its subsamples a strand covers) in all three
+/// channels: the mask `cuticle compare` averages over.
+fn coverage_image(coverage: &cuticle_render::frame::raster::Coverage) -> Image {
+    let (width, height) = (coverage.width, coverage.height);
+    Image {
+        width,
+        height,
+        pixels: (0..width * height)
+            .map(|k| DVec3::splat(coverage.pixel_fraction(k % width, k / width)))
+            .collect(),
+    }
+}
+
 /// Tone-mapped 8-bit sRGB PNG with the environment's exposure.
 pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
     let mut img = image::RgbImage::new(image.width as u32, image.height as u32);
@@ -383,7 +416,7 @@ pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
 }
 
 /// Linear 32-bit float RGB OpenEXR.
-fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
+pub fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
     let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
         let p = image.pixels[y * image.width + x];
         (p.x as f32, p.y as f32, p.z as f32)

@@ -1,7 +1,9 @@
 //! `cuticle validate`: every simulated configuration of a sweep against each model (issue 3):
 //! `validation.csv` (every configuration, model and lobe), `validation.md` (summary tables and
 //! the per-lobe verdict), `error_vs_theta_i.svg`, comparison sheets like d'Eon et al. 2014 Figure 7 in
-//! `sheets/`, and `validate.json`.
+//! `sheets/`, and `validate.json`. With `--noise`, a second sweep of the same configurations
+//! with another seed, the models are compared with the mean of the two runs and every figure
+//! gets its noise floor and noise-corrected residual (`cuticle_validate::noise`, issue 14).
 
 use crate::latlong_io::{png_bytes_with_white, read_exr, white_point};
 use crate::output::OutDir;
@@ -9,7 +11,8 @@ use crate::progress::bar;
 use crate::svg_plot::{Series, line_plot};
 use anyhow::{Context, Result, bail};
 use cuticle_fiber::{FiberAngles, LatLongImage, Lobe};
-use cuticle_validate::compare::figures_of;
+use cuticle_validate::compare::{figures_of, with_noise};
+use cuticle_validate::noise::{mean_of, seed_to_seed_l1};
 use cuticle_validate::sheet::{abs_difference, stack, total};
 use cuticle_validate::summary::mean_median;
 use cuticle_validate::{ModelKind, Row, SimConfig, csv, list_configs, markdown, model_images};
@@ -22,8 +25,16 @@ pub struct Args {
     /// A sweep folder (one subfolder per configuration) or one configuration's folder.
     #[arg(long)]
     sim: PathBuf,
-    /// Models to compare, comma-separated: nonseparable, deon2011, marschner.
-    #[arg(long, default_value = "nonseparable,deon2011,marschner")]
+    /// A second sweep of the same configurations (same parameters and paths, another --seed):
+    /// its runs give each figure's noise floor, and the models are compared with the mean of
+    /// the two.
+    #[arg(long)]
+    noise: Option<PathBuf>,
+    /// Models to compare, comma-separated: nonseparable, nonseparable-paper, deon2011, marschner.
+    #[arg(
+        long,
+        default_value = "nonseparable,nonseparable-paper,deon2011,marschner"
+    )]
     models: String,
     /// Only configurations whose folder name contains this text (e.g. `_a-4_` or `ti1.3_`).
     #[arg(long)]
@@ -51,17 +62,35 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
     }
+    let twins = args
+        .noise
+        .as_deref()
+        .map(|dir| noise_twins(&configs, dir))
+        .transpose()?;
     let out = OutDir::create(&args.out)?;
     let sheet_set = sheet_indices(configs.len(), args.sheets);
     let start = Instant::now();
     let progress = bar(configs.len() as u64, "validate");
     let mut rows = Vec::new();
     for (i, config) in configs.iter().enumerate() {
-        let sim = read_lobes(config)?;
+        let first = read_lobes(config)?;
+        let (sim, noise) = match &twins {
+            Some(t) => {
+                let second = read_lobes(&t[i])?;
+                (
+                    mean_of(&first, &second),
+                    Some(seed_to_seed_l1(&first, &second)),
+                )
+            }
+            None => (first, None),
+        };
         let mut rendered = Vec::new();
         for &kind in &models {
             let images = model_images(config, kind, sim[0].grid)?;
-            let figures = figures_of(kind, &images, &sim);
+            let mut figures = figures_of(kind, &images, &sim);
+            if let Some(n) = &noise {
+                figures = with_noise(figures, n);
+            }
             for lobe in Lobe::ALL {
                 rows.push(Row::new(config, kind, lobe, figures.lobes[lobe.index()]));
             }
@@ -76,8 +105,14 @@ pub fn run(args: Args) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
 
     out.write("validation.csv", csv(&rows).as_bytes())?;
+    let noise_note = args.noise.as_ref().map_or(String::new(), |n| {
+        format!(
+            " Second runs for the noise floor from `{}`; figures against the mean of the two.",
+            n.display()
+        )
+    });
     let header = format!(
-        "# Validation against the Monte Carlo ground truth\n\n{} configurations from `{}`, models {}.\n",
+        "# Validation against the Monte Carlo ground truth\n\n{} configurations from `{}`, models {}.{noise_note}\n",
         configs.len(),
         args.sim.display(),
         args.models
@@ -87,6 +122,40 @@ pub fn run(args: Args) -> Result<()> {
     out.write_json("validate.json", &record(&args, &configs, &rows, seconds))?;
     print_summary(&rows, configs.len(), seconds, &args);
     Ok(())
+}
+
+/// For every configuration, its second run under `dir`: the same folder name, the same
+/// parameters and number of paths, and a different seed (else the floor would be zero).
+fn noise_twins(configs: &[SimConfig], dir: &std::path::Path) -> Result<Vec<SimConfig>> {
+    let others = list_configs(dir).with_context(|| format!("--noise {}", dir.display()))?;
+    configs
+        .iter()
+        .map(|c| {
+            let Some(twin) = others.iter().find(|o| o.name == c.name) else {
+                bail!(
+                    "--noise {} has no configuration {} (run the same sweep with another --seed)",
+                    dir.display(),
+                    c.name
+                );
+            };
+            if !c.same_setup(twin) {
+                bail!(
+                    "--noise: {} differs from {} in its parameters or number of paths",
+                    twin.dir.display(),
+                    c.dir.display()
+                );
+            }
+            if c.seed.is_none() || c.seed == twin.seed {
+                bail!(
+                    "--noise: {} and {} share the seed {:?}: the second run needs another --seed",
+                    c.dir.display(),
+                    twin.dir.display(),
+                    c.seed
+                );
+            }
+            Ok(twin.clone())
+        })
+        .collect()
 }
 
 /// The simulation's five lobe images.
@@ -153,7 +222,7 @@ fn error_plot(rows: &[Row]) -> String {
     let mut thetas: Vec<f64> = rows.iter().map(|r| r.theta_i).collect();
     thetas.sort_by(f64::total_cmp);
     thetas.dedup();
-    const COLORS: [&str; 3] = ["#1f77b4", "#d62728", "#2ca02c"];
+    const COLORS: [&str; 4] = ["#1f77b4", "#ff7f0e", "#d62728", "#2ca02c"];
     let names: Vec<&'static str> = ModelKind::ALL
         .iter()
         .map(|m| m.name())
@@ -190,7 +259,7 @@ fn error_plot(rows: &[Row]) -> String {
 fn record(args: &Args, configs: &[SimConfig], rows: &[Row], seconds: f64) -> serde_json::Value {
     json!({
         "params": {
-            "sim": args.sim, "models": args.models, "filter": args.filter,
+            "sim": args.sim, "noise": args.noise, "models": args.models, "filter": args.filter,
             "sheets": args.sheets, "sheet_samples": args.sheet_samples,
         },
         "configurations": configs.len(),
@@ -200,23 +269,28 @@ fn record(args: &Args, configs: &[SimConfig], rows: &[Row], seconds: f64) -> ser
     })
 }
 
-/// Mean and median relative L1 per model and lobe.
+/// Per model and lobe: mean and median relative L1, and where there is a noise floor its
+/// median and the median residual.
 fn summary_json(rows: &[Row]) -> serde_json::Value {
+    use cuticle_validate::summary::{counted_floor, counted_l1, counted_residual};
     let mut out = serde_json::Map::new();
     for kind in ModelKind::ALL {
         let mut lobes = serde_json::Map::new();
         for lobe in Lobe::ALL {
-            let v = mean_median(
+            let of = || {
                 rows.iter()
                     .filter(|r| r.model == kind.name() && r.lobe == lobe.name())
-                    .map(cuticle_validate::summary::counted_l1),
-            );
-            if let Some((mean, median)) = v {
-                lobes.insert(
-                    lobe.name().into(),
-                    json!({"mean_relative_l1": mean, "median_relative_l1": median}),
-                );
+            };
+            let Some((mean, median)) = mean_median(of().map(counted_l1)) else {
+                continue;
+            };
+            let mut v = json!({"mean_relative_l1": mean, "median_relative_l1": median});
+            if let Some((_, floor)) = mean_median(of().map(counted_floor)) {
+                v["median_noise_floor"] = json!(floor);
+                v["median_residual_l1"] =
+                    json!(mean_median(of().map(counted_residual)).map(|m| m.1));
             }
+            lobes.insert(lobe.name().into(), v);
         }
         if !lobes.is_empty() {
             out.insert(kind.name().into(), lobes.into());
@@ -225,29 +299,57 @@ fn summary_json(rows: &[Row]) -> serde_json::Value {
     out.into()
 }
 
+/// The summary on stdout: per lobe, the mean relative L1 of each model; with a noise floor,
+/// medians: the seed-to-seed L1 and the floor, then each model's L1 and residual.
 fn print_summary(rows: &[Row], n: usize, seconds: f64, args: &Args) {
+    use cuticle_validate::summary::{counted_floor, counted_l1, counted_residual, has_noise};
     println!(
         "validated {n} configurations in {seconds:.1} s -> {}",
         args.out.display()
     );
-    for kind in ModelKind::ALL {
-        let parts: Vec<String> = ["R", "TT", "TRT"]
-            .iter()
-            .filter_map(|l| {
-                let v = mean_median(
-                    rows.iter()
-                        .filter(|r| r.model == kind.name() && r.lobe == *l)
-                        .map(cuticle_validate::summary::counted_l1),
-                )?;
-                Some(format!("{l} {:.3}", v.0))
-            })
-            .collect();
-        if !parts.is_empty() {
-            println!(
-                "  {:13} mean relative L1: {}",
-                kind.name(),
-                parts.join(", ")
-            );
+    let median = |v: Vec<Option<f64>>| mean_median(v).map(|m| m.1);
+    let fmt = |v: Option<f64>| v.map_or_else(|| "–".to_string(), |x| format!("{x:.3}"));
+    let noise = has_noise(rows);
+    if noise {
+        println!("  medians per lobe: seed-to-seed L1, noise floor; each model's L1 (residual)");
+    }
+    for lobe in ["R", "TT", "TRT"] {
+        let of = |m: &str| -> Vec<&Row> {
+            rows.iter()
+                .filter(|r| r.model == m && r.lobe == lobe)
+                .collect()
+        };
+        let mut parts = Vec::new();
+        if noise {
+            let any = of(ModelKind::ALL[0].name());
+            let floor = median(any.iter().map(|r| counted_floor(r)).collect());
+            parts.push(format!(
+                "seed-to-seed {} floor {}",
+                fmt(floor.map(|f| 2.0 * f)),
+                fmt(floor)
+            ));
         }
+        for kind in ModelKind::ALL {
+            let sel = of(kind.name());
+            if sel.is_empty() {
+                continue;
+            }
+            parts.push(if noise {
+                format!(
+                    "{} {} ({})",
+                    kind.name(),
+                    fmt(median(sel.iter().map(|r| counted_l1(r)).collect())),
+                    fmt(median(sel.iter().map(|r| counted_residual(r)).collect()))
+                )
+            } else {
+                format!(
+                    "{} {}",
+                    kind.name(),
+                    fmt(mean_median(sel.iter().map(|r| counted_l1(r))).map(|m| m.0))
+                )
+            });
+        }
+        let what = if noise { "" } else { "mean relative L1: " };
+        println!("  {lobe:4} {what}{}", parts.join(" | "));
     }
 }

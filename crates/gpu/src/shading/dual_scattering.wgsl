@@ -3,6 +3,8 @@
 // the CPU file, so that a change there is mirrored here (the parity tests catch a miss).
 
 const NEGLIGIBLE: f32 = 1e-5;
+// dual_scattering.rs's BACK_SCALE: the local term's factor.
+const BACK_SCALE: f32 = 2.0;
 
 // ∫ G_j dω of an SRBF exp(κ(ω·ω_j − 1)), κ = 2/λ².
 fn srbf_integral(lambda: f32) -> f32 {
@@ -143,7 +145,7 @@ fn local_term(back_in: array<Averages, 3>, theta_o: f32, theta_j: f32, sigma: f3
         let a = back[c];
         if (a.back > 0.0) {
             let window = window_normal_product(theta_j, sigma, 2.0 * a.back_shift - theta_o, 2.0 * a.back_width);
-            out[c] = a.back * azimuth * integrate_incident(window, params.m, o, it).x;
+            out[c] = BACK_SCALE * a.back * azimuth * integrate_incident(window, params.m, o, it).x;
         }
     }
     return out;

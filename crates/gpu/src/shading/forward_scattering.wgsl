@@ -1,7 +1,6 @@
 // srbf/forward_scattering.rs and the averages of tables/back_scattering.rs in f32: what reaches
 // a point through forward scattering along a light's shadow path (Zinke et al. 2008 §4.1).
 
-const SELF_CROSSINGS: f32 = 0.5;
 const DENSITY_FACTOR: f32 = 0.7;
 const MAX_FORWARD: f32 = 0.995;
 
@@ -61,12 +60,19 @@ struct Forward {
 }
 
 fn forward(direct_in: f32, a: Averages) -> Forward {
-    let direct = clamp(direct_in, 1e-12, 1.0);
-    let n = max(-log(direct) - SELF_CROSSINGS, 0.0);
-    let base = clamp(a.forward, 0.0, 1.0);
-    var t_f = 1.0;
-    if (n > 0.0) {
-        t_f = select(0.0, pow(base, n), base > 0.0);
+    let direct = clamp(direct_in, 1e-30, 1.0);
+    let n = -log(direct);
+    let a_f = clamp(a.forward, 0.0, 1.0);
+    let m = n * a_f;
+    // e^{−n} (e^{n ā_f} − 1), and E[k | k ≥ 1] = m / (1 − e^{−m}) → 1 as m → 0 (expm1 formed
+    // by its series below 1e-3, where f32's exp(m) − 1 would cancel).
+    var expm1_m = exp(m) - 1.0;
+    var crossings = 1.0;
+    if (m < 1e-3) {
+        expm1_m = m * (1.0 + 0.5 * m);
+    } else {
+        crossings = m / (1.0 - exp(-m));
     }
-    return Forward(DENSITY_FACTOR * max(t_f - exp(-n), 0.0), n * a.forward_variance);
+    let scattered = direct * expm1_m;
+    return Forward(DENSITY_FACTOR * scattered, select(0.0, crossings * a.forward_variance, n > 0.0));
 }

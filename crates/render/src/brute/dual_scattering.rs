@@ -7,7 +7,7 @@
 //! longitudinal and azimuthal windows become deltas at θ_k and φ_k. Per channel, with
 //! δ = φ_o − φ_k, θ_d = (θ_o − θ_k)/2 and (s, σ̄_f²) = forward(T̃_k, averages at θ_k)
 //! ([`crate::srbf::forward_scattering`]), the light adds E_k times
-//! - T̃_k d_b Ā_b ½M_b(θ_k) (cos²θ_k / cos²θ_d) 𝟙(|δ| < π/2)/(π cos θ_k), the local term of the
+//! - 2 T̃_k d_b Ā_b ½M_b(θ_k) (cos²θ_k / cos²θ_d) 𝟙(|δ| < π/2)/(π cos θ_k), the local term of the
 //!   direct light (eq. 29 without a window: P(λ → 0, δ)/π is Zinke's s_b on the backward half
 //!   circle);
 //!
@@ -17,10 +17,11 @@
 //!   global term (eqs. 27–28), with ½M_p the exact Marschner lobe as a density in θ_i (mean
 //!   2α_p − θ_o, deviation 2β_p) and 𝒩^G_p the half-circle average of the exact N_p
 //!   ([`crate::brute::half_circle`]);
-//! - s d_b Ā_b ((π − |δ|)/π²) ∫ g^u(θ_i; θ_k, σ̄_f) ½M_b(θ_i) (cos²θ_i / cos²θ_d(θ_i)) dθ_i, the
-//!   local term of the forward-scattered light (eqs. 29–31),
+//! - 2 s d_b Ā_b ((π − |δ|)/π²) ∫ g^u(θ_i; θ_k, σ̄_f) ½M_b(θ_i) (cos²θ_i / cos²θ_d(θ_i)) dθ_i,
+//!   the local term of the forward-scattered light (eqs. 29–31),
 //!
-//! with Ā_b, Δ̄_b, σ̄_b from the back-scattering tables at the light's θ_d, as the SRBF path takes
+//! the 2 being f_back's ([`crate::srbf::dual_scattering::BACK_SCALE`]), with Ā_b, Δ̄_b, σ̄_b
+//! from the back-scattering tables at the light's θ_d, as the SRBF path takes
 //! them, and ½M_b the normal density of mean 2Δ̄_b − θ_o and deviation 2σ̄_b. Each θ_i integral
 //! is a product of two normal densities (a normal density again, in closed form) times a smooth
 //! factor, by 8-point Gauss–Legendre over the product's mean ± 4 deviations within
@@ -31,7 +32,8 @@
 use crate::angles::{HALF_PI, wrap_pi};
 use crate::brute::half_circle::ExactHalfCircle;
 use crate::brute::single_scattering::LocalDirectional;
-use crate::srbf::forward_scattering::{Forward, SELF_CROSSINGS, forward};
+use crate::srbf::dual_scattering::BACK_SCALE;
+use crate::srbf::forward_scattering::{Forward, forward};
 use crate::tables::back_scattering::BackScatteringTables;
 use crate::tables::spread::SpreadNormalisation;
 use cuticle_fiber::FiberAngles;
@@ -134,10 +136,10 @@ impl BruteDual<'_> {
         light.power * DVec3::from_array(terms)
     }
 
-    /// The forward-scattered share of channel `c` when it is not negligible. Through fewer
-    /// crossings than a point's own strand there is none ([`forward`]), and no lookup.
+    /// The forward-scattered share of channel `c` when it is not negligible. An unoccluded
+    /// light has none ([`forward`]), and needs no lookup.
     fn scattered(&self, mu_a: f64, theta_k: f64, t: f64) -> Option<Forward> {
-        (t < (-SELF_CROSSINGS).exp())
+        (t < 1.0)
             .then(|| forward(t, &self.back.at(theta_k, mu_a)))
             .filter(|f| f.scattered > NEGLIGIBLE)
     }
@@ -166,7 +168,12 @@ impl BruteDual<'_> {
         };
         let mut out = 0.0;
         if backward {
-            out += t * self.d_b * a.back * back_lobe.density(theta_k) * cos_ratio(theta_o, theta_k)
+            out += BACK_SCALE
+                * t
+                * self.d_b
+                * a.back
+                * back_lobe.density(theta_k)
+                * cos_ratio(theta_o, theta_k)
                 / (PI * theta_k.cos().max(1e-4));
         }
         if let Some(fw) = scattered {
@@ -174,7 +181,7 @@ impl BruteDual<'_> {
                 mean: theta_k,
                 deviation: fw.variance.sqrt(),
             };
-            let local = self.d_b * a.back * (PI - delta) / (PI * PI)
+            let local = BACK_SCALE * self.d_b * a.back * (PI - delta) / (PI * PI)
                 * product_integral(spread, back_lobe, |x| cos_ratio(theta_o, x));
             out += fw.scattered * (self.global(fiber, c, theta_o, spread, delta) + local)
                 / self.spread.at(theta_k, spread.deviation);
@@ -245,7 +252,7 @@ mod tests {
         let back_lobe = |x: f64| gauss(x, 2.0 * a.back_shift - ao.theta, 2.0 * a.back_width);
         let mut out = 0.0;
         if delta < HALF_PI {
-            out += t * d_b * a.back * back_lobe(light.theta) * ratio(light.theta)
+            out += BACK_SCALE * t * d_b * a.back * back_lobe(light.theta) * ratio(light.theta)
                 / (PI * light.theta.cos());
         }
         let fw = forward(t, &back.at(light.theta, mu));
@@ -266,7 +273,7 @@ mod tests {
                     })
                     .sum()
             });
-            let local = d_b * a.back * (PI - delta) / (PI * PI)
+            let local = BACK_SCALE * d_b * a.back * (PI - delta) / (PI * PI)
                 * fine(|x| gauss(x, light.theta, sf) * back_lobe(x) * ratio(x));
             let norm = fine(|x| gauss(x, light.theta, sf) * x.cos());
             out += fw.scattered * (global + local) / norm;

@@ -130,8 +130,25 @@ impl Renderer {
             .get_or_build((key, d_b), || BackScatteringTables::build(fiber, d_b))
     }
 
+    /// Whether this renderer renders `scene`'s method: [`Method::Path`] belongs to the path
+    /// tracer (crate cuticle-trace).
+    pub fn accepts(scene: &Scene) -> Result<(), crate::SceneError> {
+        match scene.spec.method {
+            Method::Srbf | Method::Brute => Ok(()),
+            Method::Path => Err(crate::SceneError::Invalid(
+                "method path is rendered by the path tracer (crate cuticle-trace), not the SRBF renderer".into(),
+            )),
+        }
+    }
+
     /// Stages 2–3.
+    ///
+    /// # Panics
+    /// For [`Method::Path`] (see [`Renderer::accepts`]).
     pub fn prepare(&self, scene: &Scene, timings: &mut Timings) -> Prepared {
+        if let Err(e) = Self::accepts(scene) {
+            panic!("{e}");
+        }
         let spec = &scene.spec;
         let start = Instant::now();
         let view = scene.camera.view(spec.width, spec.height);
@@ -148,7 +165,7 @@ impl Renderer {
         let start = Instant::now();
         let lights = match spec.method {
             Method::Srbf => srbf_lights(scene),
-            Method::Brute => brute::directional_lights(scene, spec.brute_grid)
+            Method::Brute | Method::Path => brute::directional_lights(scene, spec.brute_grid)
                 .into_iter()
                 .map(|Directional { direction, power }| WorldLight {
                     direction,
@@ -192,7 +209,9 @@ impl Renderer {
         let back = multiple.then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
         let (lobes, exact_half) = match scene.spec.method {
             Method::Srbf => (Some(self.lobe_table(&hair.fiber(None))), None),
-            Method::Brute => (None, multiple.then(|| ExactHalfCircle::build(hair.eta))),
+            Method::Brute | Method::Path => {
+                (None, multiple.then(|| ExactHalfCircle::build(hair.eta)))
+            }
         };
         let shader = match (&lobes, &exact_half) {
             (Some(lobes), _) => FrameShader::Srbf(SrbfFrame {

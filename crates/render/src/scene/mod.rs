@@ -6,6 +6,7 @@
 
 pub mod camera;
 pub mod hair;
+pub mod resample;
 
 use crate::frame::shadow::ShadowOptions;
 use crate::scene::camera::Camera;
@@ -26,6 +27,9 @@ pub enum Method {
     Srbf,
     /// The exact Marschner 2003 model against the environment as directional lights.
     Brute,
+    /// The path tracer (crate cuticle-trace, `cuticle render --method path`); the SRBF
+    /// [`crate::Renderer`] does not render it ([`crate::Renderer::accepts`]).
+    Path,
 }
 
 /// Everything a render needs, as a user writes it (TOML keys = these field names).
@@ -36,7 +40,8 @@ pub struct SceneSpec {
     pub groom: String,
     /// Strands of a preset groom.
     pub strands: usize,
-    /// `default` (the procedural sky) or an .hdr/.exr lat-long map.
+    /// `default` (the procedural sky), `constant:R,G,B` (or `constant:V`, a uniform
+    /// environment for tests) or an .hdr/.exr lat-long map.
     pub env: String,
     /// Rotation of the environment about the up axis, degrees.
     pub env_rotate_deg: f64,
@@ -165,12 +170,13 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Loads the groom and environment and fits the lights, unless `lights` are given (read by
-    /// the caller from a `lights.json` of `cuticle env fit`).
+    /// Loads the groom (its long segments split for shading, [`resample`]) and environment
+    /// and fits the lights, unless `lights` are given (read by the caller from a `lights.json`
+    /// of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         spec.validate()?;
-        let groom = load_groom(&spec.groom, spec.strands)?;
-        let env = load_or_default(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
+        let groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
+        let env = load_env(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
         let (lights, fit_error) = match lights {
             Some(lights) => (lights, None),
@@ -233,6 +239,33 @@ impl Scene {
     }
 }
 
+/// The environment a scene names: `constant:R,G,B` (or `constant:V`) is a uniform map of that
+/// radiance (each channel finite and ≥ 0); anything else goes to the light crate's
+/// [`load_or_default`].
+pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
+    let Some(values) = spec.strip_prefix("constant:") else {
+        return Ok(load_or_default(spec)?);
+    };
+    let bad = || {
+        SceneError::Invalid(format!(
+            "environment {spec}: constant takes one radiance or R,G,B, each finite and >= 0"
+        ))
+    };
+    let parsed: Vec<f32> = values
+        .split(',')
+        .map(|v| v.trim().parse::<f32>().map_err(|_| bad()))
+        .collect::<Result<_, _>>()?;
+    let rgb = match parsed.as_slice() {
+        [v] => Vec3::splat(*v),
+        [r, g, b] => Vec3::new(*r, *g, *b),
+        _ => return Err(bad()),
+    };
+    if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
+        return Err(bad());
+    }
+    Ok(EnvMap::new(16, 8, vec![rgb; 16 * 8]))
+}
+
 /// A preset name or a `.hair` path.
 pub fn load_groom(spec: &str, strands: usize) -> Result<Groom, SceneError> {
     match spec.parse::<Preset>() {
@@ -255,4 +288,28 @@ pub fn light_to_world(d: DVec3) -> DVec3 {
 /// World direction → light-crate direction, the inverse of [`light_to_world`].
 pub fn world_to_light(d: DVec3) -> DVec3 {
     DVec3::new(d.x, d.z, -d.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_environments_parse_and_bad_ones_are_refused() {
+        let env = load_env("constant:0.5,1,2").unwrap();
+        assert_eq!(env.radiance(Vec3::Y), Vec3::new(0.5, 1.0, 2.0));
+        assert_eq!(load_env("constant:1").unwrap().radiance(Vec3::X), Vec3::ONE);
+        for bad in [
+            "constant:",
+            "constant:1,2",
+            "constant:-1",
+            "constant:nan",
+            "constant:a,b,c",
+        ] {
+            assert!(
+                matches!(load_env(bad), Err(SceneError::Invalid(_))),
+                "{bad}"
+            );
+        }
+    }
 }

@@ -8,9 +8,11 @@
 //! - the global term (eqs. 27–28): ℳ^G_t = (1/cos θ_j) ∫ g^u(θ_i; θ_j, σ_f) ½M_t(θ_h)
 //!   (cos²θ_i/cos²θ_d) 𝒩^G_t(φ_o − φ_j, θ_d) dθ_i, with 𝒩^G_t closed form from the circular
 //!   Gaussians and the half-circle tables ([`crate::tables::half_circle`]);
-//! - the local term (eqs. 29–31), d_b times ℳ^L = (1/cos θ_j) ∫ g^u(θ_i; θ_j, σ) ½M_b(θ_h)
+//! - the local term (eqs. 29–31), d_b times ℳ^L = (2/cos θ_j) ∫ g^u(θ_i; θ_j, σ) ½M_b(θ_h)
 //!   (cos²θ_i/cos²θ_d) Ā_b 𝒩^L dθ_i, where ½M_b is the unit normal density in θ_i of mean
-//!   2Δ̄_b − θ_o and deviation 2σ̄_b (as ½M_p is for α_p, β_p: Xu et al. 2011 eq. 7) and 𝒩^L the
+//!   2Δ̄_b − θ_o and deviation 2σ̄_b (as ½M_p is for α_p, β_p: Xu et al. 2011 eq. 7), the 2
+//!   eq. 29's and Zinke et al. 2008's f_back = 2Ā_b g(θ_h − Δ̄_b, σ̄_b²)/(π cos²θ_d)
+//!   ([`BACK_SCALE`]), and 𝒩^L the
 //!   overlap of the light's azimuthal spread with s_b = 1/π on the backward half circle around
 //!   φ_o: (π − |δ|)/π² for the scattered light, P(λ′, δ)/π for the direct light (which Zinke's
 //!   F_direct also back-scatters, with σ = λ_j/√2).
@@ -44,6 +46,13 @@ use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// Scattered shares below this skip the global and scattered local terms.
 const NEGLIGIBLE: f64 = 1e-5;
+
+/// The 2 of Zinke et al. 2008's f_back = 2Ā_b g(θ_h − Δ̄_b, σ̄_b²)/(π cos²θ_d) and of Xu et
+/// al. 2011 eq. 29: with g a unit Gaussian in θ_h, f_back carries 2Ā_b of the power a fiber
+/// intercepts, in the crate's units as in theirs (in which single scattering's ½M_p is the
+/// unit density in θ_i, and so is ½M_b here). Dropping it, as this module once did, gave half
+/// the local term of an exact path trace of a fiber slab (tests/slab.rs).
+pub const BACK_SCALE: f64 = 2.0;
 
 /// Everything multiple scattering reads besides the point and its lights.
 #[derive(Clone, Copy, Debug)]
@@ -192,7 +201,7 @@ impl Dual<'_> {
         cg::integral(bandwidth) * self.half.share(bandwidth, offset) / PI
     }
 
-    /// Per channel Ā_b 𝒩^L ∫ g^u(θ_i; θ_j, σ) ½M_b (cos²θ_i/cos²θ_d) dθ_i (eq. 29 without
+    /// Per channel 2Ā_b 𝒩^L ∫ g^u(θ_i; θ_j, σ) ½M_b (cos²θ_i/cos²θ_d) dθ_i (eq. 29 without
     /// 1/Z), `azimuth` being 𝒩^L and `back` each channel's averages at θ_d of the light.
     fn local(
         &self,
@@ -217,7 +226,7 @@ impl Dual<'_> {
                 2.0 * a.back_width,
             );
             let integral = window.integrate_incident(self.m, &outgoing, |_| DVec3::ONE);
-            a.back * azimuth * integral.x
+            BACK_SCALE * a.back * azimuth * integral.x
         }))
     }
 }

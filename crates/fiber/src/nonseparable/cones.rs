@@ -1,0 +1,240 @@
+//! Cone angles and widths of the non-separable lobes from the Nusselt analysis of d'Eon et al.
+//! 2014 §2.2, and the offset h that selects TT's: the paper's forms, and the checked exits
+//! through the full rotation sequence that the tilted model takes instead.
+
+use crate::bravais::azimuthal_deflection;
+use crate::nusselt::{self, Blocked, Nusselt};
+use crate::tilted_attenuation::incident;
+use std::f64::consts::PI;
+
+/// θ_cone of R (d'Eon et al. 2014 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)).
+pub fn cone_r(theta_i: f64, alpha: f64, phi: f64) -> f64 {
+    let (sa, ca) = alpha.sin_cos();
+    let x =
+        theta_i.sin() - 2.0 * sa * ((0.5 * phi).cos() * ca * theta_i.cos() + sa * theta_i.sin());
+    -x.clamp(-1.0, 1.0).asin()
+}
+
+/// v_R = 2β²(1 − h²) = 2β² cos²(φ/2) (d'Eon et al. 2014 eq. 6).
+pub fn variance_r(beta: f64, phi: f64) -> f64 {
+    2.0 * (beta * (0.5 * phi).cos()).powi(2)
+}
+
+/// θ_cone of TT as d'Eon et al. 2014 eq. 7 and §2.4 give it: the Nusselt rotations with every
+/// tilt α, square roots clamped, and the pole −sign(θ_i) π/2 where |x_TT| > 1. The clamp makes
+/// that test fire only near h = 0 (see [`tt_exit`]).
+pub fn cone_tt(theta_i: f64, alpha: f64, eta: f64, h: f64) -> f64 {
+    pole_where_beyond(
+        theta_i,
+        nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h)),
+    )
+}
+
+/// θ_cone of TRT (d'Eon et al. 2014 eq. 8), evaluated at h = 0, with §2.4's pole.
+pub fn cone_trt(theta_i: f64, alpha: f64, eta: f64) -> f64 {
+    pole_where_beyond(
+        theta_i,
+        nusselt::exit_trt([alpha; 3], eta, incident(theta_i, 0.0)),
+    )
+}
+
+fn pole_where_beyond(theta_i: f64, x: f64) -> f64 {
+    if x.abs() > 1.0 {
+        -theta_i.signum() * 0.5 * PI
+    } else {
+        x.asin()
+    }
+}
+
+/// θ_cone of TT for the tilted model: the same rotations, whose clamped value continues the
+/// cone smoothly past the offsets where the exit is totally reflected. There the tilted A(1, h)
+/// is zero, so the cone only places what roughness blurs across that edge; no pole.
+pub fn cone_tt_tilted(theta_i: f64, alpha: f64, eta: f64, h: f64) -> f64 {
+    let x = nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h));
+    x.clamp(-1.0, 1.0).asin()
+}
+
+/// θ_cone of TRT for the tilted model, at h = 0 as in eq. 8, continued like [`cone_tt_tilted`].
+pub fn cone_trt_tilted(theta_i: f64, alpha: f64, eta: f64) -> f64 {
+    let x = nusselt::exit_trt([alpha; 3], eta, incident(theta_i, 0.0));
+    x.clamp(-1.0, 1.0).asin()
+}
+
+/// The TT exit direction at offset h through the full rotation sequence, or why it has none:
+/// [`Blocked::TotalInternalReflection`] where η²(x_m² + y²) ≥ 1 in the second scale's frame,
+/// tested before the final rotation, at every h (d'Eon et al. 2014 §2.4: "x_TT may not be real").
+pub fn tt_exit(theta_i: f64, alpha: f64, eta: f64, h: f64) -> Result<Nusselt, Blocked> {
+    nusselt::exit_tt_checked([alpha; 2], eta, incident(theta_i, h))
+}
+
+/// The TRT exit direction at offset h, or why it has none (its internal reflection is total or
+/// partial alike; only the exit can be totally reflected).
+pub fn trt_exit(theta_i: f64, alpha: f64, eta: f64, h: f64) -> Result<Nusselt, Blocked> {
+    nusselt::exit_trt_checked([alpha; 3], eta, incident(theta_i, h))
+}
+
+/// v_TT = (½ β D_TT)², D_TT = 2(ηz′ − z)/cos θ_d with x = sin θ_d, y = h cos θ_d (d'Eon et al. 2014
+/// §2.4, corrected as the module docs explain).
+pub fn variance_tt(beta: f64, eta: f64, theta_d: f64, h: f64) -> f64 {
+    let (x, c) = theta_d.sin_cos();
+    let y = h * c;
+    let r2 = x * x + y * y;
+    let z = (1.0 - r2).max(0.0).sqrt();
+    let zp = (1.0 - r2 / (eta * eta)).max(0.0).sqrt();
+    let d = 2.0 * (eta * zp - z) / c.max(1e-6);
+    (0.5 * beta * d).powi(2)
+}
+
+/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
+pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
+    let (s, c) = theta_d.sin_cos();
+    let d = (-2.0 * c + 4.0 * eta * (1.0 - s * s / (eta * eta)).max(0.0).sqrt()) / c.max(1e-6);
+    0.25 * (beta * d).powi(2)
+}
+
+/// The offset h whose TT path leaves at azimuth φ: the root of Φ(1, h) = φ (unique: Φ(1, ·)
+/// decreases from 2π − 2c at h = −1 to 2c at h = 1, c = asin(1/η′)); clamped to ±1 outside.
+pub fn tt_offset(phi: f64, eta_prime: f64) -> f64 {
+    let target = phi.rem_euclid(2.0 * PI);
+    let (mut lo, mut hi) = (-0.5 * PI, 0.5 * PI);
+    let deflection = |g: f64| azimuthal_deflection(1, g.sin(), eta_prime);
+    if target >= deflection(lo) {
+        return -1.0;
+    }
+    if target <= deflection(hi) {
+        return 1.0;
+    }
+    // Newton on γ_i, safeguarded by the bracket [lo, hi] where Φ − target changes sign.
+    let mut g = 0.5 * (PI - target) / (1.0 - 1.0 / eta_prime);
+    g = g.clamp(lo, hi);
+    for _ in 0..50 {
+        let f = deflection(g) - target;
+        if f > 0.0 {
+            lo = g
+        } else {
+            hi = g
+        }
+        let gt = (g.sin() / eta_prime).asin();
+        let slope = 2.0 * g.cos() / (eta_prime * gt.cos()) - 2.0;
+        let mut next = g - f / slope;
+        if !(next > lo && next < hi) {
+            next = 0.5 * (lo + hi);
+        }
+        if (next - g).abs() < 1e-13 {
+            g = next;
+            break;
+        }
+        g = next;
+    }
+    g.sin()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::wrap_pi;
+
+    #[test]
+    fn r_cone_from_rotations_matches_the_closed_form() {
+        let cases: [(f64, f64, f64); 3] = [(0.3, 0.05, 0.2), (-1.0, -0.07, -0.6), (1.2, 0.03, 0.9)];
+        for (theta_i, alpha, h) in cases {
+            let phi = -2.0 * h.asin();
+            let x = nusselt::exit_r(alpha, (theta_i.sin(), h * theta_i.cos()));
+            assert!(
+                (x.asin() - cone_r(theta_i, alpha, phi)).abs() < 1e-12,
+                "θ {theta_i} α {alpha} h {h}"
+            );
+        }
+    }
+
+    #[test]
+    fn cones_reduce_to_the_specular_cone_without_tilt() {
+        for &t in &[-1.2, 0.0, 0.7] {
+            assert!((cone_r(t, 0.0, 1.0) + t).abs() < 1e-12);
+            assert!((cone_tt(t, 0.0, 1.55, 0.4) + t).abs() < 1e-12);
+            assert!((cone_trt(t, 0.0, 1.55) + t).abs() < 1e-12);
+        }
+    }
+
+    /// d'Eon et al. 2014 §2.2: the width is β/√2 (the per-axis Beckmann slope deviation, as eq. 6
+    /// implies for R) times the norm of the exit angle's derivatives in the tilts.
+    #[test]
+    fn tt_width_is_the_first_order_spread_of_the_exit_angle() {
+        let (beta, eta) = (0.05, 1.55);
+        let e = 1e-6;
+        for &(theta_d, h) in &[(0.0f64, 0.0f64), (0.4, 0.5), (-0.9, -0.3), (1.2, 0.8)] {
+            let incident = (theta_d.sin(), h * theta_d.cos());
+            let dx = |k: usize| {
+                let mut plus = [0.0; 2];
+                let mut minus = [0.0; 2];
+                plus[k] = e;
+                minus[k] = -e;
+                (nusselt::exit_tt(plus, eta, incident) - nusselt::exit_tt(minus, eta, incident))
+                    / (2.0 * e)
+            };
+            let spread = beta / 2f64.sqrt() * dx(0).hypot(dx(1)) / theta_d.cos();
+            let width = variance_tt(beta, eta, theta_d, h).sqrt();
+            assert!(
+                (spread - width).abs() < 1e-6 * width.max(1e-3),
+                "θ_d {theta_d} h {h}: {spread} vs {width}"
+            );
+        }
+        // The same convention gives eq. 6 for R.
+        let incident = (0.3f64.sin(), 0.4 * 0.3f64.cos());
+        let dr = (nusselt::exit_r(e, incident) - nusselt::exit_r(-e, incident)) / (2.0 * e);
+        let spread_r = beta / 2f64.sqrt() * dr.abs() / 0.3f64.cos();
+        assert!((spread_r - variance_r(beta, -2.0 * 0.4f64.asin()).sqrt()).abs() < 1e-8);
+    }
+
+    #[test]
+    fn tt_offset_inverts_the_deflection() {
+        let eta_p = 1.7;
+        for &h in &[-0.99, -0.5, 0.0, 0.3, 0.95] {
+            let phi = wrap_pi(azimuthal_deflection(1, h, eta_p));
+            assert!((tt_offset(phi, eta_p) - h).abs() < 1e-9, "h {h}");
+        }
+        assert_eq!(tt_offset(0.0, eta_p), 1.0);
+    }
+
+    /// The exact exit of the h = 0 TT path through a smooth fiber whose scales tilt by α (the
+    /// simulator's sign, α > 0 tilting the outward normal toward +u), by vectors alone: enter at
+    /// (y, z) = (1, 0) through the normal (sin α, cos α, 0), leave at (−1, 0) through
+    /// (sin α, −cos α, 0). None where the exit is totally reflected.
+    fn h0_tt_exit(theta_i: f64, alpha: f64, eta: f64) -> Option<f64> {
+        use glam::DVec3;
+        let refract = |d: DVec3, n: DVec3, ratio: f64| {
+            let c = -d.dot(n);
+            let k = 1.0 - ratio * ratio * (1.0 - c * c);
+            (k > 0.0).then(|| ratio * d + (ratio * c - k.sqrt()) * n)
+        };
+        let (s, c) = alpha.sin_cos();
+        let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
+        let t = refract(-wi, DVec3::new(s, c, 0.0), 1.0 / eta)?;
+        refract(t, -DVec3::new(s, -c, 0.0), eta).map(|o| o.x.asin())
+    }
+
+    /// d'Eon et al. 2014 §2.4: "for tilt angles as small as 2° no TT energy escapes a smooth fiber
+    /// for θ_i < −1.1". With this crate's sign that tilt is α = −2° (human hair's, the paper's
+    /// Figure 3), as the exact trace above and the simulator's losses (`cuticle-sim`
+    /// `tests/energy.rs`: 85 % at θ_i = +1.1, α = +4°, the mirror image) agree: the h = 0 path
+    /// at θ_i = −1.3 is totally reflected for α = −2° and leaves for α = +2°. The paper's cone
+    /// goes to the pole for the first only, the checked exit reports the same, and the tilted
+    /// model's cone stays on the exact one for the second; flipping the sign of α anywhere in
+    /// the rotations fails each of these.
+    #[test]
+    fn total_internal_reflection_sends_the_tt_cone_to_the_pole() {
+        let (theta_i, eta, alpha) = (-1.3, 1.55, 2f64.to_radians());
+        assert_eq!(h0_tt_exit(theta_i, -alpha, eta), None);
+        let open = h0_tt_exit(theta_i, alpha, eta).expect("the exit is open for α = +2°");
+        assert_eq!(cone_tt(theta_i, -alpha, eta, 0.0), 0.5 * PI);
+        assert_eq!(
+            tt_exit(theta_i, -alpha, eta, 0.0),
+            Err(Blocked::TotalInternalReflection)
+        );
+        let cone = cone_tt(theta_i, alpha, eta, 0.0);
+        assert!((cone - open).abs() < 1e-12, "{cone} vs exact {open}");
+        assert!((cone_tt_tilted(theta_i, alpha, eta, 0.0) - open).abs() < 1e-12);
+        let x = tt_exit(theta_i, alpha, eta, 0.0).unwrap().0;
+        assert!((x.asin() - open).abs() < 1e-12);
+    }
+}

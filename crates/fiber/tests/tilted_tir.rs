@@ -1,0 +1,175 @@
+//! Total internal reflection at every offset (issue 14): the fraction of offsets h whose TT
+//! (and TRT) exit the tilted non-separable model flags as totally reflected matches an exact
+//! 3D trace of a smooth cylinder with tilted shading normals, written here from vectors alone
+//! (Snell's law at n_s = (sin α, cos α·p_y, cos α·p_z), chords of the unit circle), within 1 %
+//! of the offsets. The paper's test |x_TT| > 1 after the clamp is printed beside it: it finds
+//! none of the 41 % at θ_i = 1.1, α = +2°.
+//!
+//! What the model does with the totally reflected power is measured here too: it reflects
+//! inside with Fresnel factor 1 and feeds TRT and beyond, but each reflection off a tilted
+//! scale turns it further toward grazing, and at θ_i = 0.75 and 1.1 with α = +2° the scales
+//! lose all of it (measured: 0.071 and 0.30 of the incident power, none escaping; the
+//! simulation's TRT at θ_i = 1.1 is black too, `crates/validate/tests/tilted_energy.rs`).
+
+use cuticle_fiber::nonseparable::{trt_exit, tt_exit};
+use cuticle_fiber::nusselt::{self, Blocked};
+use cuticle_fiber::tilted_attenuation::{incident, tilted_attenuation};
+use glam::{DVec2, DVec3};
+
+const ETA: f64 = 1.55;
+const OFFSETS: usize = 20_000;
+
+/// What the exact trace finds at the exit of a lobe.
+#[derive(Debug, PartialEq)]
+enum Exit {
+    Leaves,
+    TotallyReflected,
+    /// Back of a scale or through the macro surface before the exit.
+    Blocked,
+}
+
+/// The outward tilted normal at surface point p = (y, z) (the simulator's sign: α > 0 tilts it
+/// toward +u).
+fn scale_normal(p: DVec2, alpha: f64) -> DVec3 {
+    DVec3::new(alpha.sin(), alpha.cos() * p.x, alpha.cos() * p.y)
+}
+
+/// Refraction of travel direction d through normal n facing against it, ratio n_from / n_to.
+fn refract(d: DVec3, n: DVec3, ratio: f64) -> Option<DVec3> {
+    let cos_i = -d.dot(n);
+    let k = 1.0 - ratio * ratio * (1.0 - cos_i * cos_i);
+    (k > 0.0).then(|| ratio * d + (ratio * cos_i - k.sqrt()) * n)
+}
+
+/// The next surface point from p along d (inside the unit circle).
+fn next_point(p: DVec2, d: DVec3) -> DVec2 {
+    let dyz = DVec2::new(d.y, d.z);
+    p - 2.0 * p.dot(dyz) / dyz.length_squared() * dyz
+}
+
+/// The exact trace of the ray entering at offset h: the exits of TT and TRT.
+fn trace(theta_i: f64, alpha: f64, h: f64) -> (Exit, Exit) {
+    let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
+    let p1 = DVec2::new((1.0 - h * h).sqrt(), -h);
+    let n1 = scale_normal(p1, alpha);
+    if wi.dot(n1) <= 0.0 {
+        return (Exit::Blocked, Exit::Blocked);
+    }
+    let Some(t) = refract(-wi, n1, 1.0 / ETA) else {
+        unreachable!("entering a denser medium always refracts")
+    };
+    if t.y * p1.x + t.z * p1.y >= 0.0 {
+        return (Exit::Blocked, Exit::Blocked);
+    }
+    let p2 = next_point(p1, t);
+    let n2 = scale_normal(p2, alpha);
+    if t.dot(n2) <= 0.0 {
+        return (Exit::Blocked, Exit::Blocked);
+    }
+    let tt = match refract(t, -n2, ETA) {
+        Some(_) => Exit::Leaves,
+        None => Exit::TotallyReflected,
+    };
+    let r = t - 2.0 * t.dot(n2) * n2;
+    if r.y * p2.x + r.z * p2.y >= 0.0 {
+        return (tt, Exit::Blocked);
+    }
+    let p3 = next_point(p2, r);
+    let n3 = scale_normal(p3, alpha);
+    if r.dot(n3) <= 0.0 {
+        return (tt, Exit::Blocked);
+    }
+    let trt = match refract(r, -n3, ETA) {
+        Some(_) => Exit::Leaves,
+        None => Exit::TotallyReflected,
+    };
+    (tt, trt)
+}
+
+fn offset(k: usize) -> f64 {
+    -1.0 + 2.0 * (k as f64 + 0.5) / OFFSETS as f64
+}
+
+fn fraction(f: impl Fn(f64) -> bool) -> f64 {
+    (0..OFFSETS).filter(|&k| f(offset(k))).count() as f64 / OFFSETS as f64
+}
+
+fn tir(r: Result<(f64, f64), Blocked>) -> bool {
+    r == Err(Blocked::TotalInternalReflection)
+}
+
+#[test]
+fn totally_reflected_offsets_match_an_exact_trace() {
+    for (theta_i, alpha_deg) in [
+        (0.75, 2.0),
+        (0.75, -2.0),
+        (1.1, 2.0),
+        (1.1, -2.0),
+        (-1.1, -2.0),
+        (1.3, 2.0),
+    ] {
+        let alpha = f64::to_radians(alpha_deg);
+        let exact_tt = fraction(|h| trace(theta_i, alpha, h).0 == Exit::TotallyReflected);
+        let exact_trt = fraction(|h| trace(theta_i, alpha, h).1 == Exit::TotallyReflected);
+        let model_tt = fraction(|h| tir(tt_exit(theta_i, alpha, ETA, h)));
+        let model_trt = fraction(|h| tir(trt_exit(theta_i, alpha, ETA, h)));
+        // The attenuation the model integrates flags the same offsets.
+        let attenuated = fraction(|h| {
+            tilted_attenuation(theta_i, h, ETA, alpha, DVec3::ZERO)
+                .tt_totally_reflected
+                .x
+                > 0.0
+        });
+        let paper =
+            fraction(|h| nusselt::exit_tt([alpha; 2], ETA, incident(theta_i, h)).abs() > 1.0);
+        println!(
+            "θ_i {theta_i:5} α {alpha_deg:+}°: TT totally reflected at {exact_tt:.4} of offsets \
+             (model {model_tt:.4}, its attenuation {attenuated:.4}, paper's |x_TT| > 1 {paper:.4}); \
+             TRT {exact_trt:.4} (model {model_trt:.4})"
+        );
+        for (what, model, exact) in [
+            ("TT", model_tt, exact_tt),
+            ("TT attenuation", attenuated, exact_tt),
+            ("TRT", model_trt, exact_trt),
+        ] {
+            assert!(
+                (model - exact).abs() < 0.01,
+                "θ_i {theta_i} α {alpha_deg}°: {what} {model} vs exact {exact}"
+            );
+        }
+        if (theta_i, alpha_deg) == (1.1, 2.0) {
+            // The issue's measurement: 40 % of offsets, none of them found by the paper's test.
+            assert!(exact_tt > 0.35 && paper < 0.01, "{exact_tt} {paper}");
+        }
+    }
+}
+
+/// Where the totally reflected TT power goes: at the offsets whose TT exit is totally reflected,
+/// every lobe past R is fed by that power alone, so the share of it that escapes is their p ≥ 2
+/// lobes and the rest (μ_a = 0) is lost to the scales.
+#[test]
+fn totally_reflected_power_feeds_the_later_lobes_or_is_lost() {
+    for (theta_i, alpha_deg) in [(0.75, 2.0), (1.1, 2.0)] {
+        let alpha = f64::to_radians(alpha_deg);
+        let (mut reflected, mut escaped) = (0.0, 0.0);
+        for k in 0..OFFSETS {
+            let t = tilted_attenuation(theta_i, offset(k), ETA, alpha, DVec3::ZERO);
+            if t.tt_totally_reflected.x > 0.0 {
+                assert_eq!(
+                    t.lobes.0[1].x, 0.0,
+                    "no TT where its exit is totally reflected"
+                );
+                reflected += t.tt_totally_reflected.x;
+                escaped += t.lobes.0[2..].iter().map(|v| v.x).sum::<f64>();
+            }
+        }
+        let share = escaped / reflected;
+        println!(
+            "θ_i {theta_i} α {alpha_deg:+}°: totally reflected TT power {:.4} of the incident; \
+             {share:.3} of it leaves as TRT and beyond, {:.3} is lost to the scales",
+            reflected / OFFSETS as f64,
+            1.0 - share
+        );
+        assert!(reflected > 0.0 && share < 0.01, "{share}");
+    }
+}
