@@ -28,7 +28,7 @@
 //! let cpu = cuticle_render::Renderer::new(); // its tables, built once
 //! let gpu = GpuRenderer::new(&device, &cpu);
 //! let mut scene = scene();
-//! let mut frame = gpu.prepare(&scene); // drawing + shadows: after a camera/light change
+//! let mut frame = gpu.prepare(&scene)?; // drawing + shadows: after a camera/light change
 //! let image = gpu.shade(&mut frame, &scene); // shading + resolve: after a hair edit
 //! scene.spec.hair.beta_r_deg = 4.0;
 //! let edited = gpu.shade(&mut frame, &scene); // re-shades, does not redraw

@@ -83,7 +83,11 @@ struct TrtFit {
     centre: vec3<f32>,
 }
 
-// trt_fit (Xu et al. 2011 eqs. 20–23 and the blend of §4.2.4).
+// trt_fit (Xu et al. 2011 eqs. 20–23 and the blend of §4.2.4) as it was before main's
+// CausticMoments (cg_lobes.rs now keeps Marschner's caustic glints in the TRT energy): not yet
+// mirrored, so eccentric fibers, the one user of this on-the-spot fit, differ from the CPU by
+// 4e-3 relative RMSE (tests/parity.rs) where circular fibers, which read the lobe table, agree
+// to 1e-4. TODO: port CausticMoments.
 fn trt_fit(g: Geometry, sigma_a: f32) -> TrtFit {
     let sp = sigma_a / g.cos_theta_t;
     let c = taylor_coefficients(2.0, sp, g.eta_prime);
