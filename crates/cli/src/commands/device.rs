@@ -25,6 +25,8 @@ pub struct GpuRendered {
     pub image: Image,
     pub visible_points: usize,
     pub coverage: f64,
+    /// The visibility buffer drawn (for coverage.exr).
+    pub visibility: cuticle_render::frame::raster::Coverage,
     pub timings: Timings,
     pub device: Value,
 }
@@ -36,6 +38,7 @@ pub fn render(device: &GpuDevice, cpu: &Renderer, scene: &Scene) -> Result<GpuRe
     Ok(GpuRendered {
         visible_points: frame.prepared().points.len(),
         coverage: frame.prepared().coverage.covered_fraction(),
+        visibility: frame.prepared().coverage.clone(),
         timings: frame.timings(),
         device: json!({
             "name": "gpu",

@@ -106,7 +106,7 @@ pub fn run(args: Args) -> Result<()> {
             Backend::Gpu(d) => format!("{} ({})", d.summary.name, d.summary.kind),
         }
     );
-    let (image, visible_points, coverage, timings, device_json) = match &backend {
+    let (image, visible_points, coverage, visibility, timings, device_json) = match &backend {
         Backend::Cpu => {
             let progress = bar(0, "shade");
             let report = |done: usize, total: usize| {
@@ -116,27 +116,33 @@ pub fn run(args: Args) -> Result<()> {
             let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
             progress.finish_and_clear();
             let cov = prepared.coverage.covered_fraction();
+            let n = prepared.points.len();
             (
                 image,
-                prepared.points.len(),
+                n,
                 cov,
+                prepared.coverage,
                 timings,
                 device::cpu_json(),
             )
         }
         Backend::Gpu(d) => {
             let r = device::render(d, &renderer, &scene)?;
-            (r.image, r.visible_points, r.coverage, r.timings, r.device)
+            (
+                r.image,
+                r.visible_points,
+                r.coverage,
+                r.visibility,
+                r.timings,
+                r.device,
+            )
         }
     };
     let out = OutDir::create(&args.out)?;
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
     out.write("image.exr", &exr_bytes(&image)?)?;
-    out.write(
-        "coverage.exr",
-        &exr_bytes(&coverage_image(&prepared.coverage))?,
-    )?;
+    out.write("coverage.exr", &exr_bytes(&coverage_image(&visibility))?)?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
