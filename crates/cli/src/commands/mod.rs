@@ -1,4 +1,5 @@
 pub mod compare;
+pub mod device;
 pub mod env;
 pub mod fiber_args;
 pub mod furnace;

@@ -4,10 +4,12 @@
 //! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
 
+use crate::commands::device;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result};
 use cuticle_fiber::ranges::CountRange;
+use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
@@ -24,6 +26,10 @@ pub struct Args {
     /// Output folder.
     #[arg(long, default_value = "out/render")]
     out: PathBuf,
+    /// auto (a hardware GPU where one exists, else the CPU), gpu (any adapter, a software one
+    /// included) or cpu.
+    #[arg(long, default_value = "auto")]
+    device: Choice,
     #[command(flatten)]
     path: crate::commands::trace::PathArgs,
 }
@@ -88,6 +94,7 @@ pub struct SceneArgs {
 
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
+    let backend = device::choose(args.device, spec.method)?;
     if spec.method == Method::Path {
         return crate::commands::trace::run(&args.path, spec, &args.out);
     }
@@ -96,37 +103,64 @@ pub fn run(args: Args) -> Result<()> {
     let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
     eprintln!(
-        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}",
+        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}, on {}",
         scene.groom.strand_count(),
         scene.groom.point_count(),
         scene.lights.len(),
         scene.spec.width,
         scene.spec.height,
-        scene.spec.method
+        scene.spec.method,
+        match &backend {
+            Backend::Cpu => "the CPU".to_string(),
+            Backend::Gpu(d) => format!("{} ({})", d.summary.name, d.summary.kind),
+        }
     );
-    let progress = bar(0, "shade");
-    let report = |done: usize, total: usize| {
-        progress.set_length(total as u64);
-        progress.set_position(done as u64);
+    let (image, visible_points, coverage, visibility, timings, device_json) = match &backend {
+        Backend::Cpu => {
+            let progress = bar(0, "shade");
+            let report = |done: usize, total: usize| {
+                progress.set_length(total as u64);
+                progress.set_position(done as u64);
+            };
+            let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
+            progress.finish_and_clear();
+            let cov = prepared.coverage.covered_fraction();
+            let n = prepared.points.len();
+            (
+                image,
+                n,
+                cov,
+                prepared.coverage,
+                timings,
+                device::cpu_json(),
+            )
+        }
+        Backend::Gpu(d) => {
+            let r = device::render(d, &renderer, &scene)?;
+            (
+                r.image,
+                r.visible_points,
+                r.coverage,
+                r.visibility,
+                r.timings,
+                r.device,
+            )
+        }
     };
-    let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
-    progress.finish_and_clear();
     check_finite(&image)?;
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
     out.write("image.exr", &exr_bytes(&image)?)?;
-    out.write(
-        "coverage.exr",
-        &exr_bytes(&coverage_image(&prepared.coverage))?,
-    )?;
+    out.write("coverage.exr", &exr_bytes(&coverage_image(&visibility))?)?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
         "points": scene.groom.point_count(),
         "lights": scene.lights.len(),
         "srbf_fit_relative_l2": scene.fit_error,
-        "visible_points": prepared.points.len(),
-        "coverage": prepared.coverage.covered_fraction(),
+        "visible_points": visible_points,
+        "coverage": coverage,
+        "device": device_json,
         "multiple_scattering": multiple_json(&scene),
         "seconds": seconds_json(&timings),
     });
@@ -134,7 +168,7 @@ pub fn run(args: Args) -> Result<()> {
     println!(
         "{}: {} visible points shaded in {:.2} s; frame {:.2} s (drawing {:.2}, shadows {:.2}, shading {:.2}, resolve {:.2}; tables {:.2}, fit {:.2})",
         args.out.display(),
-        prepared.points.len(),
+        visible_points,
         timings.shading,
         timings.drawing + timings.shadows + timings.shading + timings.resolve,
         timings.drawing,
@@ -170,6 +204,9 @@ pub struct BenchArgs {
     /// Frames timed for each median (1 to 1000).
     #[arg(long, default_value_t = 3)]
     frames: usize,
+    /// auto (a hardware GPU where one exists, else the CPU), gpu or cpu.
+    #[arg(long, default_value = "auto")]
+    device: Choice,
     /// Output folder.
     #[arg(long, default_value = "out/bench-render")]
     out: PathBuf,
@@ -185,6 +222,7 @@ pub fn bench(command: Bench) -> Result<()> {
     args.width.into_iter().for_each(|v| spec.width = v);
     args.height.into_iter().for_each(|v| spec.height = v);
     FRAMES.check_usize(args.frames)?;
+    let backend = device::choose(args.device, spec.method)?;
     let scene = load_within_memory(spec, None)?;
     let out = OutDir::create(&args.out, "bench")?;
     let renderer = Renderer::new();
@@ -196,6 +234,19 @@ pub fn bench(command: Bench) -> Result<()> {
         scene.spec.height,
         args.frames
     );
+    if let Backend::Gpu(d) = &backend {
+        let report = device::bench(d, &renderer, &scene, args.frames)?;
+        let mut record = device::bench_json(d, &report);
+        record["params"] = serde_json::to_value(&scene.spec)?;
+        record["strands"] = json!(scene.groom.strand_count());
+        record["points"] = json!(scene.groom.point_count());
+        record["lights"] = json!(scene.lights.len());
+        record["seconds"]["tables"] = json!(renderer.table_seconds);
+        record["seconds"]["srbf_fit"] = json!(scene.fit_seconds);
+        out.finish(record)?;
+        device::print_bench(d, &report);
+        return Ok(());
+    }
     let report = cuticle_render::bench::run(&renderer, &scene, args.frames);
     out.finish(bench_json(&scene, &renderer, &report)?)?;
     print_bench(&report);
@@ -243,6 +294,7 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
         "strands": scene.groom.strand_count(),
         "points": scene.groom.point_count(),
         "lights": scene.lights.len(),
+        "device": device::cpu_json(),
         "frames": report.frames,
         "visible_points": report.visible_points,
         "seconds": {

@@ -187,6 +187,12 @@ impl LobeTable {
         }
     }
 
+    /// The grids as stored over (|θ_d|, absorption coordinate): TT [weight, bandwidth] and
+    /// TRT [φ*, glint weight, glint bandwidth, centre weight, centre bandwidth].
+    pub fn grids(&self) -> (&Grid2<2>, &Grid2<5>) {
+        (&self.tt, &self.trt)
+    }
+
     /// Whether this table holds the lobes of `fiber` (its η and caustics; absorption is an axis).
     pub fn matches(&self, fiber: &MarschnerParams) -> bool {
         self.eta == fiber.eta && self.shape == trt_shape(fiber)
