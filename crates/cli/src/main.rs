@@ -50,6 +50,7 @@ enum Command {
 }
 
 fn main() {
+    quiet_vulkan_layers();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Lobes(args) => commands::lobes::run(args),
@@ -67,6 +68,18 @@ fn main() {
     if let Err(err) = result {
         eprintln!("error: {}", one_line(&err));
         std::process::exit(1);
+    }
+}
+
+/// Turns off Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` (unless the user set
+/// `NODEVICE_SELECT` themselves): it only reorders adapters for a compositor, which cuticle
+/// chooses itself, and where no Wayland session runs it prints `error: XDG_RUNTIME_DIR is
+/// invalid…` twice on stderr at every adapter probe, around every message of ours.
+fn quiet_vulkan_layers() {
+    if std::env::var_os("NODEVICE_SELECT").is_none() {
+        // SAFETY: the first statement of main, before any thread exists that could read the
+        // environment.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
     }
 }
 

@@ -94,12 +94,14 @@ pub struct SceneArgs {
 
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
-    let backend = device::choose(args.device, spec.method)?;
     if spec.method == Method::Path {
+        device::choose(args.device, spec.method)?;
         return crate::commands::trace::run(&args.path, spec, &args.out);
     }
+    // The inputs first, then the device: a bad scene is refused before any adapter is probed.
     let scene = load_within_memory(spec, lights)?;
     Renderer::accepts(&scene)?;
+    let backend = device::choose(args.device, scene.spec.method)?;
     let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
     eprintln!(
@@ -222,8 +224,8 @@ pub fn bench(command: Bench) -> Result<()> {
     args.width.into_iter().for_each(|v| spec.width = v);
     args.height.into_iter().for_each(|v| spec.height = v);
     FRAMES.check_usize(args.frames)?;
-    let backend = device::choose(args.device, spec.method)?;
     let scene = load_within_memory(spec, None)?;
+    let backend = device::choose(args.device, scene.spec.method)?;
     let out = OutDir::create(&args.out, "bench")?;
     let renderer = Renderer::new();
     eprintln!(
@@ -262,13 +264,19 @@ const FRAMES: CountRange = CountRange {
 
 /// The scene, loaded once what it needs in memory is known to fit (checked before the groom
 /// is made, and again before drawing, with the groom's real size).
-fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
+/// The path tracer's scene has no SRBF lights (it samples the map itself).
+pub fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
     let threads = rayon::current_num_threads();
     spec.validate()?;
     let available = crate::memory::available();
-    spec.memory_need(lights.as_ref().map(Vec::len), threads)
-        .check(available)?;
-    let scene = Scene::load(spec, lights)?;
+    let path = spec.method == Method::Path;
+    let light_count = if path { Some(0) } else { lights.as_ref().map(Vec::len) };
+    spec.memory_need(light_count, threads).check(available)?;
+    let scene = if path {
+        Scene::load_without_lights(spec)?
+    } else {
+        Scene::load(spec, lights)?
+    };
     scene.memory_need(threads).check(available)?;
     Ok(scene)
 }
