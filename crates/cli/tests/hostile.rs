@@ -644,8 +644,13 @@ fn path_tracer_and_bench_trace_flags_refuse_hostile_numbers() {
     let chiang = with(&path, &["--model", "chiang2016"]);
     let values: Vec<&str> = NON_FINITE.iter().chain(&["0", "2"]).copied().collect();
     rows.extend(flag_rows(dir, &chiang, "--beta-n", &values, "beta_n"));
+    let values: Vec<&str> = NON_FINITE.iter().chain(&["0", "1"]).copied().collect();
     rows.extend(flag_rows(dir, &path, "--eta", &values, "eta"));
     rows.extend(flag_rows(dir, &path, "--device", &["gpu"], "cpu only"));
+    rows.push((
+        with(&path, &["--no-multiple", "--out", &dir.join("out").display().to_string()]),
+        "--max-depth 1".into(),
+    ));
     // Issue 9 #18's kind: `bench trace --spp 0` ran one sample per pixel and said nothing.
     let bench = ["bench", "trace", "--groom", "straight", "--width", "32", "--height", "24"];
     rows.extend(flag_rows(dir, &bench, "--spp", &["0", "1048577"], "spp"));

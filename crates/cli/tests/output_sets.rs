@@ -13,7 +13,7 @@ use std::time::Duration;
 fn render_set_width(dir: &Path) -> u64 {
     assert_eq!(
         names(dir),
-        ["image.exr", "image.png", "render.json"],
+        ["coverage.exr", "image.exr", "image.png", "render.json"],
         "{}",
         dir.display()
     );

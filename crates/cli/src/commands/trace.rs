@@ -167,6 +167,13 @@ pub const MAX_DEPTH: CountRange = CountRange {
 /// `cuticle render --method path`.
 pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
     let options = args.options()?;
+    if !spec.multiple {
+        // Once ignored: the path tracer traced every order and said nothing.
+        bail!(
+            "--no-multiple (scene key multiple = false) is for --method srbf and brute; the \
+             path tracer's single scattering is --max-depth 1"
+        );
+    }
     let scene = load(spec)?;
     let models = args.models(&scene)?;
     let params = args.json(&scene)?;
