@@ -13,10 +13,8 @@ use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
-use exr::prelude::*;
 use glam::DVec3;
 use serde_json::{Value, json};
-use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Clone, Debug)]
@@ -151,9 +149,9 @@ pub fn run(args: Args) -> Result<()> {
     };
     check_finite(&image)?;
     let tone = ToneMap::for_map(&scene.env);
-    out.write("image.png", &png_bytes(&image, tone)?)?;
-    out.write("image.exr", &exr_bytes(&image)?)?;
-    out.write("coverage.exr", &exr_bytes(&coverage_image(&visibility))?)?;
+    out.write("image.png", &image.png_bytes(tone)?)?;
+    out.write("image.exr", &image.exr_bytes()?)?;
+    out.write("coverage.exr", &coverage_image(&visibility).exr_bytes()?)?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
@@ -471,38 +469,4 @@ fn coverage_image(coverage: &cuticle_render::frame::raster::Coverage) -> Image {
             .map(|k| DVec3::splat(coverage.pixel_fraction(k % width, k / width)))
             .collect(),
     }
-}
-
-/// Tone-mapped 8-bit sRGB PNG with the environment's exposure.
-pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
-    let mut img = image::RgbImage::new(image.width as u32, image.height as u32);
-    for (k, p) in image.pixels.iter().enumerate() {
-        let c = tone.apply(p.as_vec3());
-        img.put_pixel(
-            (k % image.width) as u32,
-            (k / image.width) as u32,
-            image::Rgb(c),
-        );
-    }
-    let mut bytes = Cursor::new(Vec::new());
-    img.write_to(&mut bytes, image::ImageFormat::Png)?;
-    Ok(bytes.into_inner())
-}
-
-/// Linear 32-bit float RGB OpenEXR.
-pub fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
-    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-        let p = image.pixels[y * image.width + x];
-        (p.x as f32, p.y as f32, p.z as f32)
-    });
-    let exr = exr::prelude::Image::from_encoded_channels(
-        (image.width, image.height),
-        Encoding::SMALL_LOSSLESS,
-        channels,
-    );
-    let mut bytes = Cursor::new(Vec::new());
-    exr.write()
-        .to_buffered(&mut bytes)
-        .context("cannot encode EXR")?;
-    Ok(bytes.into_inner())
 }

@@ -7,7 +7,6 @@
 //! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
 //! Chiang 2016) for every strand.
 
-use crate::commands::render::{exr_bytes, png_bytes};
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
@@ -196,8 +195,8 @@ pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
         bail!("the path tracer produced a non-finite pixel; nothing written");
     }
     let tone = ToneMap::for_map(&scene.env);
-    out_dir.write("image.png", &png_bytes(&traced.image, tone)?)?;
-    out_dir.write("image.exr", &exr_bytes(&traced.image)?)?;
+    out_dir.write("image.png", &traced.image.png_bytes(tone)?)?;
+    out_dir.write("image.exr", &traced.image.exr_bytes()?)?;
     out_dir.write("standard_error.exr", &standard_error_exr(&traced)?)?;
     out_dir.finish(record(&scene, params, &traced)?)?;
     let s = &traced.stats;
@@ -249,11 +248,12 @@ fn record(scene: &Scene, path: Value, t: &TraceImage) -> Result<Value> {
 
 /// The per-pixel standard error of the mean, linear RGB EXR.
 fn standard_error_exr(t: &TraceImage) -> Result<Vec<u8>> {
-    exr_bytes(&Image {
+    let error = Image {
         width: t.image.width,
         height: t.image.height,
         pixels: t.standard_error.clone(),
-    })
+    };
+    Ok(error.exr_bytes()?)
 }
 
 /// `cuticle bench trace`'s flags.
