@@ -629,12 +629,28 @@ fn path_tracer_and_bench_trace_flags_refuse_hostile_numbers() {
     let mut rows = Vec::new();
     let no_spp: Vec<String> = path[..path.len() - 2].to_vec();
     rows.extend(flag_rows(dir, &no_spp, "--spp", &["0", "1048577"], "spp"));
-    rows.extend(flag_rows(dir, &path, "--max-depth", &["0", "100001"], "max_depth"));
+    rows.extend(flag_rows(
+        dir,
+        &path,
+        "--max-depth",
+        &["0", "100001"],
+        "max_depth",
+    ));
     for model in ["deon2011", "nonseparable", "chiang2016"] {
         let m = with(&path, &["--model", model]);
         let values: Vec<&str> = NON_FINITE.iter().chain(&["0", "2"]).copied().collect();
-        let beta = if model == "chiang2016" { "--beta-m" } else { "--beta" };
-        rows.extend(flag_rows(dir, &m, beta, &values, &beta[2..].replace('-', "_")));
+        let beta = if model == "chiang2016" {
+            "--beta-m"
+        } else {
+            "--beta"
+        };
+        rows.extend(flag_rows(
+            dir,
+            &m,
+            beta,
+            &values,
+            &beta[2..].replace('-', "_"),
+        ));
         let values: Vec<&str> = NON_FINITE.iter().chain(&["45"]).copied().collect();
         rows.extend(flag_rows(dir, &m, "--alpha-deg", &values, "alpha_deg"));
         let values: Vec<&str> = NON_FINITE.iter().chain(&["-1", "51"]).copied().collect();
@@ -648,14 +664,29 @@ fn path_tracer_and_bench_trace_flags_refuse_hostile_numbers() {
     rows.extend(flag_rows(dir, &path, "--eta", &values, "eta"));
     rows.extend(flag_rows(dir, &path, "--device", &["gpu"], "cpu only"));
     rows.push((
-        with(&path, &["--no-multiple", "--out", &dir.join("out").display().to_string()]),
+        with(
+            &path,
+            &[
+                "--no-multiple",
+                "--out",
+                &dir.join("out").display().to_string(),
+            ],
+        ),
         "--max-depth 1".into(),
     ));
     // Issue 9 #18's kind: `bench trace --spp 0` ran one sample per pixel and said nothing.
-    let bench = ["bench", "trace", "--groom", "straight", "--width", "32", "--height", "24"];
+    let bench = [
+        "bench", "trace", "--groom", "straight", "--width", "32", "--height", "24",
+    ];
     rows.extend(flag_rows(dir, &bench, "--spp", &["0", "1048577"], "spp"));
     rows.extend(flag_rows(dir, &bench, "--max-depth", &["0"], "max_depth"));
-    rows.extend(flag_rows(dir, &bench[..6], "--height", &["0", "16385"], "height"));
+    rows.extend(flag_rows(
+        dir,
+        &bench[..6],
+        "--height",
+        &["0", "16385"],
+        "height",
+    ));
     refuse_all(dir, &rows);
     // The path tracer's image needs memory as the SRBF renderer's does: refused before
     // allocating, not killed.
@@ -673,12 +704,28 @@ fn the_path_tracer_writes_a_finite_set() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("path");
     let mut args = with(&["render"], &B);
-    args.extend(["--method", "path", "--spp", "2", "--max-depth", "8", "--out"].map(String::from));
+    args.extend(
+        [
+            "--method",
+            "path",
+            "--spp",
+            "2",
+            "--max-depth",
+            "8",
+            "--out",
+        ]
+        .map(String::from),
+    );
     args.push(out.display().to_string());
     assert_runs(&args.iter().map(String::as_str).collect::<Vec<_>>());
     assert_eq!(
         names(&out),
-        ["image.exr", "image.png", "render.json", "standard_error.exr"]
+        [
+            "image.exr",
+            "image.png",
+            "render.json",
+            "standard_error.exr"
+        ]
     );
     let image = cuticle_light::image_file::read_rgb_exr(&out.join("image.exr")).unwrap();
     assert_eq!((image.width, image.height), (32, 24));
@@ -713,10 +760,13 @@ fn compare_refuses_hostile_render_folders_naming_the_file() {
     let at = claim.windows(10).position(|w| w == b"dataWindow").unwrap();
     // name\0 "box2i"\0 size(4): then x_min, y_min, x_max, y_max.
     let max = at + b"dataWindow\0box2i\0".len() + 4 + 8;
-    claim[max..max + 8].copy_from_slice(&[&99_999i32.to_le_bytes()[..], &99_999i32.to_le_bytes()].concat());
+    claim[max..max + 8]
+        .copy_from_slice(&[&99_999i32.to_le_bytes()[..], &99_999i32.to_le_bytes()].concat());
     let cases: Vec<(String, &str)> = vec![
         (
-            spoiled("no-record", &|d| std::fs::remove_file(d.join("render.json")).unwrap()),
+            spoiled("no-record", &|d| {
+                std::fs::remove_file(d.join("render.json")).unwrap()
+            }),
             "not a complete output of `cuticle render`",
         ),
         (
@@ -727,7 +777,9 @@ fn compare_refuses_hostile_render_folders_naming_the_file() {
             "nan/image.exr: pixel (column 1, row 1) has a non-finite value NaN",
         ),
         (
-            spoiled("claim", &|d| std::fs::write(d.join("image.exr"), &claim).unwrap()),
+            spoiled("claim", &|d| {
+                std::fs::write(d.join("image.exr"), &claim).unwrap()
+            }),
             "claim/image.exr",
         ),
         (
@@ -762,11 +814,20 @@ fn compare_refuses_hostile_render_folders_naming_the_file() {
         assert_refused(&["compare", &good, b, "--out", &out], needle);
     }
     assert_refused(
-        &["compare", &good, &good, "--minus", &good, &good, "--out", &out],
+        &[
+            "compare", &good, &good, "--minus", &good, &good, "--out", &out,
+        ],
         "undefined",
     );
     let err = assert_refused(
-        &["compare", &good, &good, "--min-coverage=1e300", "--out", &out],
+        &[
+            "compare",
+            &good,
+            &good,
+            "--min-coverage=1e300",
+            "--out",
+            &out,
+        ],
         "got 1e300",
     );
     assert!(err.len() < 80, "{err}");

@@ -119,12 +119,9 @@ impl Render {
     }
 
     fn image(&self, name: &str) -> Result<Image> {
-        let path = self.path(name).with_context(|| {
-            format!(
-                "{}: its render.json lists no {name}",
-                self.dir.display()
-            )
-        })?;
+        let path = self
+            .path(name)
+            .with_context(|| format!("{}: its render.json lists no {name}", self.dir.display()))?;
         read_image(&path)
     }
 }
@@ -132,9 +129,9 @@ impl Render {
 /// A's image.png and B's, left and right.
 fn side_by_side(a: &Render, b: &Render) -> Result<Vec<u8>> {
     let read = |r: &Render| {
-        let path = r.path("image.png").with_context(|| {
-            format!("{}: its render.json lists no image.png", r.dir.display())
-        })?;
+        let path = r
+            .path("image.png")
+            .with_context(|| format!("{}: its render.json lists no image.png", r.dir.display()))?;
         let image = image::open(&path)
             .with_context(|| format!("cannot read {}", path.display()))?
             .to_rgb8();
@@ -334,7 +331,9 @@ mod tests {
         // A black B (say, B − B0 of two equal renders) leaves the ratio undefined: refused,
         // not written as NaN.
         let black_green = image(3, 3, |_, _| DVec3::new(1.0, 0.0, 1.0));
-        let err = compare(&one, &black_green, &one, 1.0).unwrap_err().to_string();
+        let err = compare(&one, &black_green, &one, 1.0)
+            .unwrap_err()
+            .to_string();
         assert!(err.contains("channel G"), "{err}");
     }
 }

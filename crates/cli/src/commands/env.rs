@@ -188,5 +188,9 @@ fn env_json(
 fn preview_png(map: &EnvMap, report: &FitReport, width: usize) -> Result<Vec<u8>> {
     let image = comparison_image(map, &report.lights, width);
     let (w, h) = (image.width() as usize, image.height() as usize);
-    Ok(cuticle_light::image_file::png_bytes(w, h, image.into_raw())?)
+    Ok(cuticle_light::image_file::png_bytes(
+        w,
+        h,
+        image.into_raw(),
+    )?)
 }

@@ -268,7 +268,11 @@ pub fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Re
     spec.validate()?;
     let available = crate::memory::available();
     let path = spec.method == Method::Path;
-    let light_count = if path { Some(0) } else { lights.as_ref().map(Vec::len) };
+    let light_count = if path {
+        Some(0)
+    } else {
+        lights.as_ref().map(Vec::len)
+    };
     spec.memory_need(light_count, threads).check(available)?;
     let scene = if path {
         Scene::load_without_lights(spec)?

@@ -7,11 +7,11 @@
 //! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
 //! Chiang 2016) for every strand.
 
+use crate::commands::fiber_args::absorption;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
 use cuticle_fiber::ranges::{BETA, CountRange};
-use crate::commands::fiber_args::absorption;
 use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, FiberParams, NonSeparable};
 use cuticle_light::ToneMap;
 use cuticle_render::{Image, Scene, SceneSpec};
@@ -99,6 +99,19 @@ impl PathArgs {
         Ok(params)
     }
 
+    /// The model's flags checked against the scene's hair before anything is loaded.
+    fn check(&self, spec: &SceneSpec) -> Result<()> {
+        match self.model {
+            TraceModel::Marschner => Ok(()),
+            TraceModel::Chiang2016 => {
+                self.fiber(spec, BETA.named("beta_m").check(self.beta_m)?)?;
+                BETA.named("beta_n").check(self.beta_n)?;
+                Ok(())
+            }
+            _ => self.fiber(spec, self.beta).map(|_| ()),
+        }
+    }
+
     fn models(&self, scene: &Scene) -> Result<StrandModels> {
         let strands = scene.groom.strand_count();
         let one = |m: Box<dyn FiberModel>| Ok(StrandModels::uniform(m, strands));
@@ -173,6 +186,7 @@ pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
              path tracer's single scattering is --max-depth 1"
         );
     }
+    args.check(&spec)?;
     let scene = load(spec)?;
     let models = args.models(&scene)?;
     let params = args.json(&scene)?;

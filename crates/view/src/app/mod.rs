@@ -621,7 +621,11 @@ fn check(look: &Look) -> Result<(), String> {
 fn write_color_image(path: &std::path::Path, image: &egui::ColorImage) -> Result<(), String> {
     let [w, h] = image.size;
     // The window is opaque: its alpha is 255 everywhere.
-    let rgb: Vec<u8> = image.pixels.iter().flat_map(|c| [c.r(), c.g(), c.b()]).collect();
+    let rgb: Vec<u8> = image
+        .pixels
+        .iter()
+        .flat_map(|c| [c.r(), c.g(), c.b()])
+        .collect();
     let png = cuticle_light::image_file::png_bytes(w, h, rgb)
         .map_err(|e| format!("the screenshot: {e}"))?;
     crate::image_file::write_atomic(path, &png)
