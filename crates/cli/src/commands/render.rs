@@ -96,9 +96,9 @@ pub fn run(args: Args) -> Result<()> {
         device::choose(args.device, spec.method)?;
         return crate::commands::trace::run(&args.path, spec, &args.out);
     }
-    // The inputs first, then the device: a bad scene is refused before any adapter is probed.
     let scene = load_within_memory(spec, lights)?;
     Renderer::accepts(&scene)?;
+    // The device is probed only once the scene is known to be good: bad input fails fast.
     let backend = device::choose(args.device, scene.spec.method)?;
     let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
