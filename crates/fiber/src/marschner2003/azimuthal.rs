@@ -12,7 +12,7 @@ use glam::DVec3;
 /// inclination that stretches the internal path.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Interface {
-    eta_perp: f64,
+    pub(super) eta_perp: f64,
     eta_par: f64,
     cos_theta_t: f64,
     mu_a: DVec3,
@@ -56,6 +56,24 @@ pub(super) fn azimuthal(p: u32, interface: &Interface, phi: f64) -> DVec3 {
         .iter()
         .map(|&g| interface.attenuation(p, g) * deflection.inverse_spread(g))
         .sum()
+}
+
+/// N_p(φ) and Σ 1/|2 dΦ̂/dh| over the same roots (the density with which R and TT sample φ):
+/// [`azimuthal`] and the sampler's density from one root search, with their arithmetic.
+pub(super) fn azimuthal_and_density(p: u32, interface: &Interface, phi: f64) -> (DVec3, f64) {
+    let deflection = interface.deflection(p);
+    let roots = deflection.roots(phi);
+    let n = roots
+        .as_slice()
+        .iter()
+        .map(|&g| interface.attenuation(p, g) * deflection.inverse_spread(g))
+        .sum();
+    let density = roots
+        .as_slice()
+        .iter()
+        .map(|&g| deflection.inverse_spread(g))
+        .sum();
+    (n, density)
 }
 
 /// Marschner 2003's treatment of the TRT caustics (its listing for N_TRT), taken at the

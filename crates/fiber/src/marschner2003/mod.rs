@@ -85,7 +85,7 @@ use std::f64::consts::SQRT_2;
 use std::sync::OnceLock;
 
 pub use azimuthal::{Caustic, eta_star};
-use azimuthal::{Interface, azimuthal, azimuthal_trt};
+use azimuthal::{Interface, azimuthal, azimuthal_and_density, azimuthal_trt};
 pub use deflection::{CubicDeflection, GammaRoots};
 use longitudinal::GaussianLobe;
 pub use params::{
@@ -154,15 +154,22 @@ impl Marschner2003 {
             out[1] = m[1] * azimuthal(1, &circular, phi);
         }
         if m[2] > 0.0 {
-            let eta = eta_star(p.eta, p.eccentricity, wi.phi + wo.phi);
-            let interface = if eta == p.eta {
-                circular
-            } else {
-                Interface::new(eta, theta_d, p.mu_a)
-            };
-            out[2] = m[2] * azimuthal_trt(&interface, p, phi);
+            out[2] = m[2] * self.trt(wi, wo, &circular, phi);
         }
         out
+    }
+
+    /// N_TRT at η*(φ_h) (the circle's interface unless the fiber is elliptical).
+    fn trt(&self, wi: FiberAngles, wo: FiberAngles, circular: &Interface, phi: f64) -> DVec3 {
+        let p = &self.params;
+        let eta = eta_star(p.eta, p.eccentricity, wi.phi + wo.phi);
+        let interface = if eta == p.eta {
+            *circular
+        } else {
+            let theta_d = 0.5 * (wo.theta - wi.theta);
+            Interface::new(eta, theta_d, p.mu_a)
+        };
+        azimuthal_trt(&interface, p, phi)
     }
 }
 

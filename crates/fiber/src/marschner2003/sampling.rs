@@ -1,10 +1,13 @@
 //! Importance sampling: lobe choice by an energy table, θ_h by inversion, φ by the cubic or
 //! TRT's mixture; the [`FiberModel`] implementation.
 
-use super::{Caustic, CubicDeflection, GaussianLobe, Interface, Marschner2003, MarschnerParams};
+use super::{
+    Caustic, CubicDeflection, GaussianLobe, Interface, Marschner2003, MarschnerParams,
+    azimuthal_and_density, per_steradian_factor,
+};
 use crate::azimuthal::wrapped_gaussian;
 use crate::bravais::eta_perp;
-use crate::deon2011::finish_sample;
+use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
 use crate::model::{FiberModel, FiberSample, per_steradian, select_and_remap};
@@ -124,6 +127,45 @@ impl Marschner2003 {
         }
     }
 
+    /// S (all lobes) and [`FiberModel::pdf`] together, for a sample: the lobe probabilities
+    /// passed in, M_p and the interface found once, R's and TT's roots searched once for both
+    /// N_p and their φ density. The arithmetic of `eval` and `pdf`, so the same results.
+    fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles, probs: &[f64; 3]) -> (DVec3, f64) {
+        let theta_h = 0.5 * (wi.theta + wo.theta);
+        let theta_d = 0.5 * (wo.theta - wi.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let scale = per_steradian_factor(wo.theta, theta_d);
+        let raw = self.lobes.map(|lobe| lobe.eval(theta_h));
+        let m = raw.map(|x| x * scale);
+        let p = &self.params;
+        let circular = Interface::new(p.eta, theta_d, p.mu_a);
+        let mut s = [DVec3::ZERO; 3];
+        let mut phi_density = [0.0; 3];
+        for lobe in 0..2 {
+            if m[lobe] > 0.0 || probs[lobe] > 0.0 {
+                let (n, density) = azimuthal_and_density(lobe as u32, &circular, phi);
+                if m[lobe] > 0.0 {
+                    s[lobe] = m[lobe] * n;
+                }
+                phi_density[lobe] = density;
+            }
+        }
+        if m[2] > 0.0 {
+            s[2] = m[2] * self.trt(wi, wo, &circular, phi);
+        }
+        if probs[2] > 0.0 {
+            phi_density[2] = TrtProposal::new(circular.eta_perp, p).density(phi);
+        }
+        // GaussianLobe::density is ½ M_p(θ_h).
+        let density: f64 = (0..3)
+            .filter(|&l| probs[l] > 0.0)
+            .map(|l| probs[l] * (0.5 * raw[l]) * phi_density[l])
+            .sum();
+        let [r, tt, trt] = s;
+        let total = LobeValues([r, tt, trt, DVec3::ZERO, DVec3::ZERO]).total();
+        (total, per_steradian(density, wo.theta))
+    }
+
     /// The density of φ given θ_d with which lobe p is sampled.
     fn phi_density(&self, p: usize, theta_d: f64, phi: f64) -> f64 {
         let eta_prime = eta_perp(self.params.eta, theta_d);
@@ -175,7 +217,8 @@ impl FiberModel for Marschner2003 {
         let theta_d = 0.5 * (theta_o - wi.theta);
         let phi = self.sample_phi(p, theta_d, [u[2], u[3]]);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
-        finish_sample(self, wi, wo, Lobe::from_index(p), 1)
+        let (s, pdf) = self.eval_and_pdf(wi, wo, &probs);
+        weighted_sample(wo, s, pdf, Lobe::from_index(p), 1)
     }
 
     /// The density of [`FiberModel::sample`]'s directions; it integrates to the probability

@@ -416,6 +416,19 @@ fn sampling_matches_pdf_chi2() {
 }
 
 #[test]
+fn samples_carry_exactly_the_eval_and_pdf_they_report() {
+    // sample finds S and pdf together (one root search for R and TT): the arithmetic of eval
+    // and pdf, so the same bits, circular or elliptical.
+    for eccentricity in [1.0, 0.9] {
+        let m = model(MarschnerParams {
+            eccentricity,
+            ..Default::default()
+        });
+        check_weights(&m, FiberAngles::new(0.45, -0.3), 20_000, 8, 0.0).unwrap();
+    }
+}
+
+#[test]
 fn weights_average_to_the_integral_of_s() {
     // The estimator Σ weight / draws (a rejected draw counts 0) is unbiased only if the
     // sampling covers every direction where S > 0: compare it with quadrature of S.
