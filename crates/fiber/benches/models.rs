@@ -6,9 +6,10 @@
 //! `Sample_f` and `PDF` take the offset too). After the runs it prints the table,
 //! criterion's medians beside pbrt-v4's figures and the aims.
 //!
-//! `cargo bench -p cuticle-fiber --bench models` runs everything; a criterion filter
-//! (`-- deon2011`) runs a part. The direct-quadrature models and the table build are listed
-//! after the table's models and may be skipped with `-- table` style filters.
+//! `cargo bench -p cuticle-fiber --bench models` runs everything; criterion's filter (a regex)
+//! runs a part, e.g. only the table's four models:
+//! `cargo bench -p cuticle-fiber --bench models -- '^(deon2011_table|chiang2016_h0.3|nonseparable_table|marschner2003)/'`
+//! (the far-field Chiang 2016, direct d'Eon 2011 and the table build come after them).
 
 use criterion::{BatchSize, Criterion};
 use cuticle_fiber::absorption::mu_a_from_melanin;

@@ -120,7 +120,7 @@ mod tests {
             for i in 0..=60 {
                 let (sc, cc) = (-1.55 + 3.1 * i as f64 / 60.0).sin_cos();
                 for o in 0..=200 {
-                    let (so, co) = (-1.5707 + 3.1414 * o as f64 / 200.0).sin_cos();
+                    let (so, co) = (0.9999 * PI * (o as f64 / 200.0 - 0.5)).sin_cos();
                     let want = w.eval_log_space(sc, cc, so, co);
                     let got = w.eval(sc, cc, so, co);
                     if want > 1e-250 {
