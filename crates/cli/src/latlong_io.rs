@@ -3,65 +3,41 @@
 //! writes lobe images (`sim`, `sweep`, `lobes`).
 
 use crate::output::OutDir;
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use cuticle_fiber::{LatLongGrid, LatLongImage};
-use exr::prelude::*;
+use cuticle_light::image_file;
 use glam::DVec3;
-use std::io::Cursor;
 use std::path::Path;
 
 /// The lobe file names, in lobe order, then the sum (docs/conventions.md §5).
 pub const LOBE_FILES: [&str; 6] = ["R", "TT", "TRT", "TRRT", "rest", "total"];
 
-/// The image as an OpenEXR file in memory: R, G, B channels of 32-bit floats, ZIP compression.
+/// The image as an OpenEXR file in memory: R, G, B channels of 32-bit floats, lossless
+/// compression ([`image_file::exr_bytes`]).
 pub fn exr_bytes(img: &LatLongImage) -> Result<Vec<u8>> {
-    let g = img.grid;
-    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-        let p = img.at(x, y);
-        (p.x as f32, p.y as f32, p.z as f32)
-    });
-    let image =
-        Image::from_encoded_channels((g.width, g.height), Encoding::SMALL_LOSSLESS, channels);
-    let mut bytes = Cursor::new(Vec::new());
-    image
-        .write()
-        .to_buffered(&mut bytes)
-        .context("cannot encode EXR")?;
-    Ok(bytes.into_inner())
+    Ok(image_file::exr_bytes(
+        img.grid.width,
+        img.grid.height,
+        &img.pixels,
+    )?)
 }
 
 /// Most pixels a lat-long image read back may claim (4000 × 1000, the largest `lobes` writes,
-/// is 4e6): a hostile header is refused before anything is allocated.
+/// is 4e6).
 const MAX_READ_PIXELS: usize = 1 << 24;
 
-/// Reads a lat-long EXR written by [`exr_bytes`] (or any RGB EXR; alpha is ignored): for the
-/// commands that consume a sweep (validation).
+/// Reads a lat-long EXR written by [`exr_bytes`] (or any RGB EXR; alpha is ignored) through
+/// [`image_file::read_rgb_exr`] (a hostile header refused before anything is allocated, NaN
+/// pixels named): for the commands that consume a sweep (validation).
 pub fn read_exr(path: &Path) -> Result<LatLongImage> {
-    let meta = exr::meta::MetaData::read_from_file(path, false)
-        .with_context(|| format!("cannot read {}", path.display()))?;
-    if let Some(size) = meta
-        .headers
-        .iter()
-        .map(|h| h.layer_size)
-        .find(|s| s.0.saturating_mul(s.1) > MAX_READ_PIXELS || s.0 == 0 || s.1 == 0)
-    {
-        bail!(
-            "cannot read {}: its header claims {}x{} pixels",
-            path.display(),
-            size.0,
-            size.1
-        );
+    let image = image_file::read_rgb_exr(path)?;
+    let (w, h) = (image.width, image.height);
+    if w == 0 || h == 0 || w.saturating_mul(h) > MAX_READ_PIXELS {
+        bail!("cannot read {}: it is {w}x{h} pixels", path.display());
     }
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |size, _| LatLongImage::zeros(LatLongGrid::new(size.0, size.1)),
-        |img: &mut LatLongImage, Vec2(x, y), (r, g, b, _a): (f32, f32, f32, f32)| {
-            let w = img.grid.width;
-            img.pixels[y * w + x] = DVec3::new(r as f64, g as f64, b as f64);
-        },
-    )
-    .with_context(|| format!("cannot read {}", path.display()))?;
-    Ok(image.layer_data.channel_data.pixels)
+    let mut img = LatLongImage::zeros(LatLongGrid::new(w, h));
+    img.pixels = image.pixels;
+    Ok(img)
 }
 
 /// The luminance below which 99.5 % of the image's non-zero pixels lie: the white point of
@@ -112,13 +88,7 @@ pub fn png_bytes_with_white(img: &LatLongImage, w: f64) -> Result<Vec<u8>> {
         .iter()
         .flat_map(|p| [srgb(map(p.x)), srgb(map(p.y)), srgb(map(p.z))])
         .collect();
-    let buffer =
-        image::RgbImage::from_raw(g.width as u32, g.height as u32, rgb).context("image size")?;
-    let mut bytes = Cursor::new(Vec::new());
-    buffer
-        .write_to(&mut bytes, image::ImageFormat::Png)
-        .context("cannot encode PNG")?;
-    Ok(bytes.into_inner())
+    Ok(image_file::png_bytes(g.width, g.height, rgb)?)
 }
 
 /// `azimuthal.csv`: a `phi` column (the φ of each column's centre), then for each named image

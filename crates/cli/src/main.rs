@@ -41,7 +41,7 @@ enum Command {
     /// relative RMSE, for the whole hair and its bottom fifth (compare.json).
     Compare(commands::compare::Args),
     /// The live look-development window: edit the hair, lighting and camera, paint colour onto strands.
-    View(commands::view::Args),
+    View(Box<commands::view::Args>),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),
     /// Benchmarks: the renderer on the paper's workload (render).
@@ -62,7 +62,7 @@ fn main() {
         Command::Render(args) => commands::render::run(*args),
         Command::Validate(args) => commands::validate::run(args),
         Command::Compare(args) => commands::compare::run(args),
-        Command::View(args) => commands::view::run(args),
+        Command::View(args) => commands::view::run(*args),
         Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {

@@ -40,6 +40,11 @@ const STAGE_MARK: &str = ".staging-";
 impl OutDir {
     /// Begins a new set for `command` that will replace `root` (see the module documentation).
     pub fn create(root: &Path, command: &'static str) -> Result<Self> {
+        Self::create_with_pid(root, command, std::process::id())
+    }
+
+    /// [`OutDir::create`] with the stage of process `pid` (tests stand in for another run).
+    fn create_with_pid(root: &Path, command: &'static str, pid: u32) -> Result<Self> {
         let root = absolute(root)?;
         let parent = root
             .parent()
@@ -49,7 +54,7 @@ impl OutDir {
             .with_context(|| format!("cannot create output folder {}", parent.display()))?;
         check_replaceable(&root, command)?;
         remove_abandoned_stages(&root);
-        let stage = stage_path(&root, std::process::id());
+        let stage = stage_path(&root, pid);
         if stage.exists() {
             fs::remove_dir_all(&stage)
                 .with_context(|| format!("cannot remove {}", stage.display()))?;
@@ -184,8 +189,9 @@ fn check_replaceable(root: &Path, command: &str) -> Result<()> {
         return Ok(());
     }
     let record = record_name(command);
-    let listed = listed_files(&root.join(&record)).with_context(|| {
-        format!(
+    // The cause (no such file, not JSON) is what the sentence says: it is not repeated.
+    let listed = listed_files(&root.join(&record)).map_err(|_| {
+        anyhow::anyhow!(
             "--out {} is not an earlier output of `cuticle {command}` (it holds {}, and no {record}); \
              choose a new or empty folder",
             root.display(),
@@ -221,6 +227,30 @@ fn entry_names(dir: &Path) -> Result<Vec<String>> {
 
 /// The `"files"` of a record; for a record written before sets listed their files, every
 /// plain file of the kinds commands write.
+/// Most bytes of a record read back (a sweep's of thousands of files takes well under 1 MB).
+const MAX_RECORD: u64 = 16 << 20;
+
+/// The files of the complete earlier output of `command` in `dir`, as its record
+/// `<command>.json` lists them: for a command that reads another's output (`compare` reads
+/// renders), so that it reads only a set that was finished, and only the files of that set.
+pub fn read_set(dir: &Path, command: &str) -> Result<Vec<String>> {
+    let record = dir.join(record_name(command));
+    let files = fs::metadata(&record)
+        .ok()
+        .filter(|m| m.len() <= MAX_RECORD)
+        .and_then(|_| fs::read(&record).ok())
+        .and_then(|bytes| serde_json::from_slice::<Value>(&bytes).ok())
+        .and_then(|v| serde_json::from_value::<Vec<String>>(v.get("files")?.clone()).ok());
+    files.with_context(|| {
+        format!(
+            "{} is not a complete output of `cuticle {command}`: its record {} is missing, \
+             unreadable or lists no \"files\"",
+            dir.display(),
+            record.display()
+        )
+    })
+}
+
 fn listed_files(record: &Path) -> Result<Vec<String>> {
     let text = fs::read_to_string(record)?;
     let value: Value = serde_json::from_str(&text)?;
@@ -276,8 +306,13 @@ fn process_alive(pid: u32) -> bool {
 /// then holds the old set), a rename when it does not.
 fn swap_in(stage: &Path, root: &Path) -> Result<()> {
     let context = || format!("cannot put the new output in place of {}", root.display());
-    if !root.exists() {
-        return fs::rename(stage, root).with_context(context);
+    // A plain rename first, and the exchange when a folder is there: asking whether one is
+    // there first left a window in which another run into the same folder could put its set
+    // in place ("Directory not empty").
+    match fs::rename(stage, root) {
+        Ok(()) => return Ok(()),
+        Err(_) if root.is_dir() => {}
+        Err(e) => return Err(e).with_context(context),
     }
     match exchange(stage, root) {
         Ok(()) => Ok(()),
@@ -446,6 +481,28 @@ mod tests {
         let file = tmp.path().join("file");
         fs::write(&file, b"").unwrap();
         assert!(OutDir::create(&file, "render").is_err());
+    }
+
+    /// Two runs into one absent folder at once: the second to finish found no folder when it
+    /// began, and the first's set is there when it finishes; it replaces that set whole.
+    #[test]
+    fn a_set_put_in_place_by_another_run_meanwhile_is_replaced() {
+        let tmp = tempfile::tempdir().unwrap();
+        let root = tmp.path().join("out");
+        let mut second = OutDir::create(&root, "compare").unwrap();
+        second.write("b.txt", b"second").unwrap();
+        let mut first = OutDir::create_with_pid(&root, "compare", 4_194_306).unwrap();
+        first.write("a.txt", b"first").unwrap();
+        first.finish(json!({})).unwrap();
+        second.finish(json!({})).unwrap();
+        let mut left: Vec<_> = fs::read_dir(tmp.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        left.sort();
+        assert_eq!(left, ["out"]);
+        assert_eq!(fs::read(root.join("b.txt")).unwrap(), b"second");
+        assert!(!root.join("a.txt").exists(), "one set, not a mix");
     }
 
     #[test]

@@ -619,3 +619,242 @@ fn a_resumed_sweep_with_other_settings_is_refused() {
         (Some(1), Some(1))
     );
 }
+
+#[test]
+fn path_tracer_and_bench_trace_flags_refuse_hostile_numbers() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let path = with(&["render"], &B);
+    let path = with(&path, &["--method", "path", "--spp", "1"]);
+    let mut rows = Vec::new();
+    let no_spp: Vec<String> = path[..path.len() - 2].to_vec();
+    rows.extend(flag_rows(dir, &no_spp, "--spp", &["0", "1048577"], "spp"));
+    rows.extend(flag_rows(
+        dir,
+        &path,
+        "--max-depth",
+        &["0", "100001"],
+        "max_depth",
+    ));
+    for model in ["deon2011", "nonseparable", "chiang2016"] {
+        let m = with(&path, &["--model", model]);
+        let values: Vec<&str> = NON_FINITE.iter().chain(&["0", "2"]).copied().collect();
+        let beta = if model == "chiang2016" {
+            "--beta-m"
+        } else {
+            "--beta"
+        };
+        rows.extend(flag_rows(
+            dir,
+            &m,
+            beta,
+            &values,
+            &beta[2..].replace('-', "_"),
+        ));
+        let values: Vec<&str> = NON_FINITE.iter().chain(&["45"]).copied().collect();
+        rows.extend(flag_rows(dir, &m, "--alpha-deg", &values, "alpha_deg"));
+        let values: Vec<&str> = NON_FINITE.iter().chain(&["-1", "51"]).copied().collect();
+        rows.extend(flag_rows(dir, &m, "--eumelanin", &values, "eumelanin"));
+        rows.extend(flag_rows(dir, &m, "--pheomelanin", &values, "pheomelanin"));
+    }
+    let chiang = with(&path, &["--model", "chiang2016"]);
+    let values: Vec<&str> = NON_FINITE.iter().chain(&["0", "2"]).copied().collect();
+    rows.extend(flag_rows(dir, &chiang, "--beta-n", &values, "beta_n"));
+    let values: Vec<&str> = NON_FINITE.iter().chain(&["0", "1"]).copied().collect();
+    rows.extend(flag_rows(dir, &path, "--eta", &values, "eta"));
+    rows.extend(flag_rows(dir, &path, "--device", &["gpu"], "cpu only"));
+    rows.push((
+        with(
+            &path,
+            &[
+                "--no-multiple",
+                "--out",
+                &dir.join("out").display().to_string(),
+            ],
+        ),
+        "--max-depth 1".into(),
+    ));
+    // Issue 9 #18's kind: `bench trace --spp 0` ran one sample per pixel and said nothing.
+    let bench = [
+        "bench", "trace", "--groom", "straight", "--width", "32", "--height", "24",
+    ];
+    rows.extend(flag_rows(dir, &bench, "--spp", &["0", "1048577"], "spp"));
+    rows.extend(flag_rows(dir, &bench, "--max-depth", &["0"], "max_depth"));
+    rows.extend(flag_rows(
+        dir,
+        &bench[..6],
+        "--height",
+        &["0", "16385"],
+        "height",
+    ));
+    refuse_all(dir, &rows);
+    // The path tracer's image needs memory as the SRBF renderer's does: refused before
+    // allocating, not killed.
+    let out = dir.join("out").display().to_string();
+    let big = [
+        "render", "--method", "path", "--width", "16384", "--height", "16384", "--out", &out,
+    ];
+    assert!(assert_refused(&big, "of memory").contains("4.0 GB is available"));
+}
+
+#[test]
+fn the_path_tracer_writes_a_finite_set() {
+    // After the lights of a scene were checked (1 to 512), `--method path`, which loads its
+    // scene without SRBF lights, was refused with "got 0" whatever its flags.
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("path");
+    let mut args = with(&["render"], &B);
+    args.extend(
+        [
+            "--method",
+            "path",
+            "--spp",
+            "2",
+            "--max-depth",
+            "8",
+            "--out",
+        ]
+        .map(String::from),
+    );
+    args.push(out.display().to_string());
+    assert_runs(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(
+        names(&out),
+        [
+            "image.exr",
+            "image.png",
+            "render.json",
+            "standard_error.exr"
+        ]
+    );
+    let image = cuticle_light::image_file::read_rgb_exr(&out.join("image.exr")).unwrap();
+    assert_eq!((image.width, image.height), (32, 24));
+    assert!(image.pixels.iter().any(|p| p.max_element() > 0.0));
+}
+
+/// A render folder of `cuticle render` at 32 × 24, then copies of it with one file spoiled.
+#[test]
+fn compare_refuses_hostile_render_folders_naming_the_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let good = dir.join("good");
+    let mut args = with(&["render", "--device", "cpu"], &B);
+    args.extend(["--out".into(), good.display().to_string()]);
+    assert_runs(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    let spoiled = |name: &str, spoil: &dyn Fn(&Path)| {
+        let copy = dir.join(name);
+        std::fs::create_dir_all(&copy).unwrap();
+        for file in names(&good) {
+            std::fs::copy(good.join(&file), copy.join(&file)).unwrap();
+        }
+        spoil(&copy);
+        copy.display().to_string()
+    };
+    let exr = |w: usize, h: usize, f: &dyn Fn(usize) -> f64| {
+        let pixels: Vec<glam::DVec3> = (0..w * h).map(|k| glam::DVec3::splat(f(k))).collect();
+        cuticle_light::image_file::exr_bytes(w, h, &pixels).unwrap()
+    };
+    // An EXR header that claims 100000 × 100000 pixels in a few hundred bytes: compare once
+    // tried to allocate 240 GB and aborted.
+    let mut claim = exr(4, 4, &|_| 1.0);
+    let at = claim.windows(10).position(|w| w == b"dataWindow").unwrap();
+    // name\0 "box2i"\0 size(4): then x_min, y_min, x_max, y_max.
+    let max = at + b"dataWindow\0box2i\0".len() + 4 + 8;
+    claim[max..max + 8]
+        .copy_from_slice(&[&99_999i32.to_le_bytes()[..], &99_999i32.to_le_bytes()].concat());
+    let cases: Vec<(String, &str)> = vec![
+        (
+            spoiled("no-record", &|d| {
+                std::fs::remove_file(d.join("render.json")).unwrap()
+            }),
+            "not a complete output of `cuticle render`",
+        ),
+        (
+            spoiled("nan", &|d| {
+                let bytes = exr(32, 24, &|k| if k == 33 { f64::NAN } else { 1.0 });
+                std::fs::write(d.join("image.exr"), bytes).unwrap()
+            }),
+            "nan/image.exr: pixel (column 1, row 1) has a non-finite value NaN",
+        ),
+        (
+            spoiled("claim", &|d| {
+                std::fs::write(d.join("image.exr"), &claim).unwrap()
+            }),
+            "claim/image.exr",
+        ),
+        (
+            spoiled("small", &|d| {
+                std::fs::write(d.join("image.exr"), exr(16, 12, &|_| 1.0)).unwrap()
+            }),
+            "B is 16x12, A is 32x24",
+        ),
+        (
+            spoiled("black", &|d| {
+                std::fs::write(d.join("image.exr"), exr(32, 24, &|_| 0.0)).unwrap()
+            }),
+            "ratio A/B and the relative RMSE are undefined",
+        ),
+        (
+            spoiled("png", &|d| {
+                std::fs::write(d.join("image.png"), b"not a png").unwrap()
+            }),
+            "png/image.png",
+        ),
+        (
+            spoiled("garbage", &|d| {
+                std::fs::write(d.join("image.exr"), b"v/1\x01garbage").unwrap()
+            }),
+            "garbage/image.exr",
+        ),
+        (dir.join("missing").display().to_string(), "missing"),
+    ];
+    let out = dir.join("out").display().to_string();
+    let good = good.display().to_string();
+    for (b, needle) in &cases {
+        assert_refused(&["compare", &good, b, "--out", &out], needle);
+    }
+    assert_refused(
+        &[
+            "compare", &good, &good, "--minus", &good, &good, "--out", &out,
+        ],
+        "undefined",
+    );
+    let err = assert_refused(
+        &[
+            "compare",
+            &good,
+            &good,
+            "--min-coverage=1e300",
+            "--out",
+            &out,
+        ],
+        "got 1e300",
+    );
+    assert!(err.len() < 80, "{err}");
+    assert!(!dir.join("out").exists());
+    assert_runs(&["compare", &good, &good, "--out", &out]);
+}
+
+#[test]
+fn view_refuses_what_would_hang_or_exhaust_it_before_opening_a_window() {
+    // No display is needed: each is refused before the window opens.
+    let tmp = tempfile::tempdir().unwrap();
+    let shot = tmp.path().join("shot.png").display().to_string();
+    let view = |more: &[&str]| {
+        let mut args = vec!["view", "--screenshot", &shot];
+        args.extend(more);
+        args.into_iter().map(String::from).collect::<Vec<_>>()
+    };
+    for (more, needle) in [
+        // Waited a billion frames after the first full one: never wrote, never exited.
+        (&["--after-frames", "1001"][..], "after_frames"),
+        (&["--width", "16384", "--height", "16384"], "of memory"),
+        (&["--strands", "2000000"], "of memory"),
+        (&["--method", "path"], "--method path"),
+        (&["--eta", "nan"], "eta"),
+    ] {
+        let args = view(more);
+        assert_refused(&args.iter().map(String::as_str).collect::<Vec<_>>(), needle);
+    }
+    assert!(!tmp.path().join("shot.png").exists());
+}

@@ -30,6 +30,10 @@ pub enum LightError {
         row: usize,
         value: f32,
     },
+    #[error("cannot read {path}: {message}")]
+    Image { path: PathBuf, message: String },
+    #[error("cannot encode {0}")]
+    Encode(String),
     #[error("invalid fit options: {0}")]
     FitOptions(String),
     #[error("light {index}: {message}")]

@@ -41,6 +41,7 @@ mod error;
 mod exr_reader;
 mod fit;
 mod hdr;
+pub mod image_file;
 mod latlong;
 mod load;
 mod procedural_sky;

@@ -29,7 +29,7 @@ pub fn load_env_map(path: &Path) -> Result<EnvMap, LightError> {
         path: path.to_path_buf(),
         source,
     })?;
-    let max_pixels = MAX_PIXELS.min(bytes.len().saturating_mul(MAX_PIXELS_PER_BYTE) + (1 << 16));
+    let max_pixels = MAX_PIXELS.min(max_pixels_of(bytes.len()));
     let raw = if is_exr(&bytes) {
         read_exr(path, &bytes, max_pixels)?
     } else if is_radiance(&bytes) {
@@ -40,6 +40,11 @@ pub fn load_env_map(path: &Path) -> Result<EnvMap, LightError> {
         });
     };
     validated(path, raw)
+}
+
+/// The most pixels a file of `bytes` bytes can hold in any supported compression.
+pub(crate) fn max_pixels_of(bytes: usize) -> usize {
+    bytes.saturating_mul(MAX_PIXELS_PER_BYTE) + (1 << 16)
 }
 
 /// `"default"` gives the procedural sky ([`ProceduralSky::default`] at 1024 × 512); anything else

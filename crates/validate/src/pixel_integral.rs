@@ -9,7 +9,7 @@
 //! [`PixelRule::band`] of the specular cone θ_o = −θ_i (where every lobe's cone lies, shifted
 //! by at most (6η − 2)|α| for TRRT, d'Eon et al. 2014 §2.2), and `far_nodes` elsewhere, where S is
 //! smooth. The defaults (8, 3, 3) conserve each lobe's energy, as `furnace::albedo` integrates
-//! it independently, to 0.2 % (test `pixel_integral_conserves_energy`).
+//! it independently (the bound is test `pixel_integral_conserves_energy`'s).
 
 use cuticle_fiber::special::GaussLegendre;
 use cuticle_fiber::{FiberAngles, FiberModel, LatLongGrid, LatLongImage};

@@ -14,7 +14,6 @@
 use crate::output::OutDir;
 use anyhow::{Context, Result, bail};
 use cuticle_render::Image;
-use exr::prelude::*;
 use glam::DVec3;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -62,22 +61,24 @@ pub fn run(args: Args) -> Result<()> {
     if !(args.min_coverage > 0.0 && args.min_coverage <= 1.0) {
         bail!(
             "--min-coverage must lie in (0, 1], got {}",
-            args.min_coverage
+            cuticle_fiber::ranges::short(args.min_coverage)
         );
     }
-    let mut a = read_image(&args.a.join("image.exr"))?;
-    let mut b = read_image(&args.b.join("image.exr"))?;
+    let (render_a, render_b) = (Render::open(&args.a)?, Render::open(&args.b)?);
+    let mut a = render_a.image("image.exr")?;
+    let mut b = render_b.image("image.exr")?;
     if let Some(minus) = &args.minus {
-        a = difference(&a, &read_image(&minus[0].join("image.exr"))?)?;
-        b = difference(&b, &read_image(&minus[1].join("image.exr"))?)?;
+        a = difference(&a, &Render::open(&minus[0])?.image("image.exr")?)?;
+        b = difference(&b, &Render::open(&minus[1])?.image("image.exr")?)?;
     }
-    let coverage_path = [args.a.join("coverage.exr"), args.b.join("coverage.exr")]
+    let coverage_path = [&render_a, &render_b]
         .into_iter()
-        .find(|p| p.is_file())
+        .find_map(|r| r.path("coverage.exr"))
         .or(args.coverage.clone())
-        .context("no coverage.exr in either folder; give --coverage FILE")?;
+        .context("no coverage.exr in either render; give --coverage FILE")?;
     let coverage = read_image(&coverage_path)?;
     let result = compare(&a, &b, &coverage, args.min_coverage)?;
+    let side_by_side = side_by_side(&render_a, &render_b)?;
     print_region("hair", &result.hair);
     print_region("bottom fifth", &result.bottom_fifth);
     let mut out = OutDir::create(&args.out, "compare")?;
@@ -90,30 +91,73 @@ pub fn run(args: Args) -> Result<()> {
         "hair": result.hair,
         "bottom_fifth": result.bottom_fifth,
     });
-    out.write("side_by_side.png", &side_by_side(&args.a, &args.b)?)?;
+    out.write("side_by_side.png", &side_by_side)?;
     out.finish(record)?;
     Ok(())
 }
 
+/// A finished output folder of `cuticle render`: only the files its render.json lists are read.
+struct Render {
+    dir: PathBuf,
+    files: Vec<String>,
+}
+
+impl Render {
+    fn open(dir: &Path) -> Result<Self> {
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            files: crate::output::read_set(dir, "render")?,
+        })
+    }
+
+    /// `name` in the folder, when the render wrote it.
+    fn path(&self, name: &str) -> Option<PathBuf> {
+        self.files
+            .iter()
+            .any(|f| f == name)
+            .then(|| self.dir.join(name))
+    }
+
+    fn image(&self, name: &str) -> Result<Image> {
+        let path = self
+            .path(name)
+            .with_context(|| format!("{}: its render.json lists no {name}", self.dir.display()))?;
+        read_image(&path)
+    }
+}
+
 /// A's image.png and B's, left and right.
-fn side_by_side(a: &Path, b: &Path) -> Result<Vec<u8>> {
-    let read = |dir: &Path| {
-        let path = dir.join("image.png");
-        image::open(&path)
-            .with_context(|| format!("cannot read {}", path.display()))
-            .map(|i| i.to_rgb8())
+fn side_by_side(a: &Render, b: &Render) -> Result<Vec<u8>> {
+    let read = |r: &Render| {
+        let path = r
+            .path("image.png")
+            .with_context(|| format!("{}: its render.json lists no image.png", r.dir.display()))?;
+        let image = image::open(&path)
+            .with_context(|| format!("cannot read {}", path.display()))?
+            .to_rgb8();
+        Ok::<_, anyhow::Error>((path, image))
     };
-    let (left, right) = (read(a)?, read(b)?);
+    let ((left_path, left), (right_path, right)) = (read(a)?, read(b)?);
     if left.dimensions() != right.dimensions() {
-        bail!("the two image.png differ in size");
+        bail!(
+            "{} is {}x{} and {} is {}x{}",
+            left_path.display(),
+            left.width(),
+            left.height(),
+            right_path.display(),
+            right.width(),
+            right.height()
+        );
     }
     let (w, h) = left.dimensions();
     let mut both = image::RgbImage::new(2 * w, h);
     image::imageops::replace(&mut both, &left, 0, 0);
     image::imageops::replace(&mut both, &right, w as i64, 0);
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    both.write_to(&mut bytes, image::ImageFormat::Png)?;
-    Ok(bytes.into_inner())
+    Ok(cuticle_light::image_file::png_bytes(
+        2 * w as usize,
+        h as usize,
+        both.into_raw(),
+    )?)
 }
 
 fn print_region(name: &str, r: &RegionStats) {
@@ -156,27 +200,38 @@ pub fn compare(a: &Image, b: &Image, coverage: &Image, min_coverage: f64) -> Res
         .filter(|&k| (k / a.width) as f64 > cut)
         .collect();
     Ok(Comparison {
-        hair: region(a, b, &hair),
-        bottom_fifth: region(a, b, &tips),
+        hair: region(a, b, &hair)?,
+        bottom_fifth: region(a, b, &tips)?,
     })
 }
 
-fn region(a: &Image, b: &Image, pixels: &[usize]) -> RegionStats {
+/// The figures over `pixels`; B's mean must be positive in every channel, or the ratio and
+/// the relative RMSE divide by zero.
+fn region(a: &Image, b: &Image, pixels: &[usize]) -> Result<RegionStats> {
     let n = pixels.len().max(1) as f64;
     let sum = |img: &Image| pixels.iter().map(|&k| img.pixels[k]).sum::<DVec3>() / n;
     let (mean_a, mean_b) = (sum(a), sum(b));
+    if let Some(c) = (0..3).find(|&c| mean_b[c] <= 0.0) {
+        bail!(
+            "B's mean over the {} hair pixels is {} in channel {}: the ratio A/B and the \
+             relative RMSE are undefined",
+            pixels.len(),
+            mean_b[c],
+            ["R", "G", "B"][c]
+        );
+    }
     let square: DVec3 = pixels
         .iter()
         .map(|&k| (a.pixels[k] - b.pixels[k]).powf(2.0))
         .sum::<DVec3>()
         / n;
-    RegionStats {
+    Ok(RegionStats {
         pixels: pixels.len(),
         mean_a: mean_a.to_array(),
         mean_b: mean_b.to_array(),
         ratio: (mean_a / mean_b).to_array(),
         relative_rmse: (square.map(f64::sqrt) / mean_b).to_array(),
-    }
+    })
 }
 
 fn difference(x: &Image, y: &Image) -> Result<Image> {
@@ -201,26 +256,15 @@ fn difference(x: &Image, y: &Image) -> Result<Image> {
     })
 }
 
-/// An RGB(A) EXR's first layer as linear RGB.
+/// An RGB(A) EXR's first layer as linear RGB: its header bounded by the file's size, every
+/// pixel finite (cuticle_light's reader).
 fn read_image(path: &Path) -> Result<Image> {
-    let image = read_first_rgba_layer_from_file(
-        path,
-        |size, _| Image {
-            width: size.0,
-            height: size.1,
-            pixels: vec![DVec3::ZERO; size.0 * size.1],
-        },
-        |img: &mut Image, Vec2(x, y), (r, g, b, _a): (f32, f32, f32, f32)| {
-            let w = img.width;
-            img.pixels[y * w + x] = DVec3::new(r as f64, g as f64, b as f64);
-        },
-    )
-    .with_context(|| format!("cannot read {}", path.display()))?;
-    let img = image.layer_data.channel_data.pixels;
-    if img.pixels.iter().any(|p| !p.is_finite()) {
-        bail!("{} holds a non-finite pixel", path.display());
-    }
-    Ok(img)
+    let image = cuticle_light::image_file::read_rgb_exr(path)?;
+    Ok(Image {
+        width: image.width,
+        height: image.height,
+        pixels: image.pixels,
+    })
 }
 
 #[cfg(test)]
@@ -284,5 +328,12 @@ mod tests {
         let empty = image(3, 3, |_, _| DVec3::ZERO);
         let err = compare(&one, &one, &empty, 1.0).unwrap_err().to_string();
         assert!(err.contains("no pixel"), "{err}");
+        // A black B (say, B − B0 of two equal renders) leaves the ratio undefined: refused,
+        // not written as NaN.
+        let black_green = image(3, 3, |_, _| DVec3::new(1.0, 0.0, 1.0));
+        let err = compare(&one, &black_green, &one, 1.0)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("channel G"), "{err}");
     }
 }

@@ -105,7 +105,7 @@ pub fn print_bench(device: &GpuDevice, r: &GpuBenchReport) {
             )
         });
     println!(
-        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} and shadows {:.3} on the CPU, upload {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.4} s (shading {:.4}, resolve {:.4}), {:.1} frames/s; {stamps}",
+        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} and shadows {:.3} on the CPU, upload {:.3}, shading {:.3}, resolve {:.3}); {}; {stamps}",
         device.summary.name,
         device.summary.kind,
         r.frames,
@@ -116,9 +116,6 @@ pub fn print_bench(device: &GpuDevice, r: &GpuBenchReport) {
         r.upload,
         f.shading,
         f.resolve,
-        r.rerender_frame,
-        r.rerender.shading,
-        r.rerender.resolve,
-        1.0 / r.rerender_frame.max(1e-9),
+        crate::commands::render::rerender_summary(r.rerender_frame, &r.rerender),
     );
 }

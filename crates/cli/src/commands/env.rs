@@ -12,7 +12,6 @@ use cuticle_light::{
 };
 use cuticle_render::scene::ENV_ROTATE_DEG;
 use serde_json::{Value, json};
-use std::io::Cursor;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -188,7 +187,10 @@ fn env_json(
 /// fit.png: the map (left) and its reconstruction (right), tone-mapped alike.
 fn preview_png(map: &EnvMap, report: &FitReport, width: usize) -> Result<Vec<u8>> {
     let image = comparison_image(map, &report.lights, width);
-    let mut bytes = Cursor::new(Vec::new());
-    image.write_to(&mut bytes, image::ImageFormat::Png)?;
-    Ok(bytes.into_inner())
+    let (w, h) = (image.width() as usize, image.height() as usize);
+    Ok(cuticle_light::image_file::png_bytes(
+        w,
+        h,
+        image.into_raw(),
+    )?)
 }

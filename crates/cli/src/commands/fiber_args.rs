@@ -38,6 +38,29 @@ impl ModelName {
     }
 }
 
+/// The absorption σ_a the flags give: `--mu-a`, else melanin (`--eumelanin`, `--pheomelanin`,
+/// each checked), else `default`.
+pub fn absorption(
+    mu_a: Option<[f64; 3]>,
+    eumelanin: Option<f64>,
+    pheomelanin: Option<f64>,
+    default: DVec3,
+) -> Result<DVec3> {
+    Ok(match (mu_a, eumelanin, pheomelanin) {
+        (Some(m), _, _) => DVec3::from_array(m),
+        (None, None, None) => default,
+        (None, eu, pheo) => {
+            let eu = ranges::MELANIN
+                .named("eumelanin")
+                .check(eu.unwrap_or(0.0))?;
+            let pheo = ranges::MELANIN
+                .named("pheomelanin")
+                .check(pheo.unwrap_or(0.0))?;
+            mu_a_from_melanin(eu, pheo)
+        }
+    })
+}
+
 #[derive(clap::Args, Clone, Debug)]
 pub struct FiberArgs {
     /// Fiber model.
@@ -73,19 +96,12 @@ pub struct FiberArgs {
 impl FiberArgs {
     /// The physical parameters, validated: one sentence per fault.
     pub fn params(&self) -> Result<FiberParams> {
-        let mu_a = match (self.mu_a, self.eumelanin, self.pheomelanin) {
-            (Some(m), _, _) => DVec3::from_array(m),
-            (None, None, None) => DVec3::new(0.12, 0.25, 0.5),
-            (None, eu, pheo) => {
-                let eu = ranges::MELANIN
-                    .named("eumelanin")
-                    .check(eu.unwrap_or(0.0))?;
-                let pheo = ranges::MELANIN
-                    .named("pheomelanin")
-                    .check(pheo.unwrap_or(0.0))?;
-                mu_a_from_melanin(eu, pheo)
-            }
-        };
+        let mu_a = absorption(
+            self.mu_a,
+            self.eumelanin,
+            self.pheomelanin,
+            DVec3::new(0.12, 0.25, 0.5),
+        )?;
         let params = FiberParams {
             eta: self.eta,
             beta: self.beta,

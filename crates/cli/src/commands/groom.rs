@@ -208,7 +208,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let args = make_args(dir.path(), 120, 9);
         make(&args).unwrap();
-        let file = HairFile::read(&args.out.join(HAIR_FILE)).unwrap();
+        let file = HairFile::read(args.out.join(HAIR_FILE)).unwrap();
         assert_eq!(file.strand_count, 120);
         let expected = generate(&make_params(&args)).unwrap();
         assert_eq!(file.point_count as usize, expected.point_count());

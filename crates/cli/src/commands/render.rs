@@ -13,10 +13,8 @@ use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
-use exr::prelude::*;
 use glam::DVec3;
 use serde_json::{Value, json};
-use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Clone, Debug)]
@@ -151,9 +149,9 @@ pub fn run(args: Args) -> Result<()> {
     };
     check_finite(&image)?;
     let tone = ToneMap::for_map(&scene.env);
-    out.write("image.png", &png_bytes(&image, tone)?)?;
-    out.write("image.exr", &exr_bytes(&image)?)?;
-    out.write("coverage.exr", &exr_bytes(&coverage_image(&visibility))?)?;
+    out.write("image.png", &image.png_bytes(tone)?)?;
+    out.write("image.exr", &image.exr_bytes()?)?;
+    out.write("coverage.exr", &coverage_image(&visibility).exr_bytes()?)?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
@@ -264,13 +262,23 @@ const FRAMES: CountRange = CountRange {
 
 /// The scene, loaded once what it needs in memory is known to fit (checked before the groom
 /// is made, and again before drawing, with the groom's real size).
-fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
+/// The path tracer's scene has no SRBF lights (it samples the map itself).
+pub fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
     let threads = rayon::current_num_threads();
     spec.validate()?;
     let available = crate::memory::available();
-    spec.memory_need(lights.as_ref().map(Vec::len), threads)
-        .check(available)?;
-    let scene = Scene::load(spec, lights)?;
+    let path = spec.method == Method::Path;
+    let light_count = if path {
+        Some(0)
+    } else {
+        lights.as_ref().map(Vec::len)
+    };
+    spec.memory_need(light_count, threads).check(available)?;
+    let scene = if path {
+        Scene::load_without_lights(spec)?
+    } else {
+        Scene::load(spec, lights)?
+    };
     scene.memory_need(threads).check(available)?;
     Ok(scene)
 }
@@ -315,7 +323,7 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
 fn print_bench(r: &BenchReport) {
     let f = &r.full;
     println!(
-        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.3} s (shading {:.3}, resolve {:.3}), {:.2} frames/s; tables {:.2} s once",
+        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); {}; tables {:.2} s once",
         r.frames,
         r.visible_points,
         r.full_frame,
@@ -323,12 +331,19 @@ fn print_bench(r: &BenchReport) {
         f.shadows,
         f.shading,
         f.resolve,
-        r.rerender_frame,
-        r.rerender.shading,
-        r.rerender.resolve,
-        1.0 / r.rerender_frame.max(1e-9),
+        rerender_summary(r.rerender_frame, &r.rerender),
         f.tables
     );
+}
+
+/// The re-render after an absorption edit, as both devices' benchmarks print it.
+pub fn rerender_summary(frame: f64, t: &Timings) -> String {
+    format!(
+        "re-render after an absorption edit {frame:.4} s (shading {:.4}, resolve {:.4}), {:.1} frames/s",
+        t.shading,
+        t.resolve,
+        1.0 / frame.max(1e-9)
+    )
 }
 
 /// The scene file (if any) with the flags laid over it, and lights read from a file.
@@ -465,38 +480,4 @@ fn coverage_image(coverage: &cuticle_render::frame::raster::Coverage) -> Image {
             .map(|k| DVec3::splat(coverage.pixel_fraction(k % width, k / width)))
             .collect(),
     }
-}
-
-/// Tone-mapped 8-bit sRGB PNG with the environment's exposure.
-pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
-    let mut img = image::RgbImage::new(image.width as u32, image.height as u32);
-    for (k, p) in image.pixels.iter().enumerate() {
-        let c = tone.apply(p.as_vec3());
-        img.put_pixel(
-            (k % image.width) as u32,
-            (k / image.width) as u32,
-            image::Rgb(c),
-        );
-    }
-    let mut bytes = Cursor::new(Vec::new());
-    img.write_to(&mut bytes, image::ImageFormat::Png)?;
-    Ok(bytes.into_inner())
-}
-
-/// Linear 32-bit float RGB OpenEXR.
-pub fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
-    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
-        let p = image.pixels[y * image.width + x];
-        (p.x as f32, p.y as f32, p.z as f32)
-    });
-    let exr = exr::prelude::Image::from_encoded_channels(
-        (image.width, image.height),
-        Encoding::SMALL_LOSSLESS,
-        channels,
-    );
-    let mut bytes = Cursor::new(Vec::new());
-    exr.write()
-        .to_buffered(&mut bytes)
-        .context("cannot encode EXR")?;
-    Ok(bytes.into_inner())
 }

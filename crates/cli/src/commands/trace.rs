@@ -7,11 +7,11 @@
 //! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
 //! Chiang 2016) for every strand.
 
-use crate::commands::render::{exr_bytes, png_bytes};
+use crate::commands::fiber_args::absorption;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
-use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::ranges::{BETA, CountRange};
 use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, FiberParams, NonSeparable};
 use cuticle_light::ToneMap;
 use cuticle_render::{Image, Scene, SceneSpec};
@@ -67,12 +67,8 @@ pub struct PathArgs {
 
 impl PathArgs {
     fn options(&self) -> Result<TraceOptions> {
-        if self.spp == 0 || self.spp > 1 << 20 {
-            bail!("--spp must lie in 1..=1048576, got {}", self.spp);
-        }
-        if self.max_depth == 0 || self.max_depth > 100_000 {
-            bail!("--max-depth must lie in 1..=100000, got {}", self.max_depth);
-        }
+        SPP.check(self.spp.into())?;
+        MAX_DEPTH.check(self.max_depth.into())?;
         Ok(TraceOptions {
             spp: self.spp,
             seed: self.seed,
@@ -87,17 +83,12 @@ impl PathArgs {
     /// the scene's `--mu-a`, else melanin, else the scene's default σ_a.
     fn fiber(&self, spec: &SceneSpec, beta: f64) -> Result<FiberParams> {
         let hair = &spec.hair;
-        let mu_a = match (hair.mu_a, self.eumelanin, self.pheomelanin) {
-            (Some(m), _, _) => DVec3::from_array(m),
-            (None, None, None) => DVec3::from_array(hair.default_mu_a),
-            (None, eu, pheo) => {
-                let (eu, pheo) = (eu.unwrap_or(0.0), pheo.unwrap_or(0.0));
-                if !(eu.is_finite() && pheo.is_finite() && eu >= 0.0 && pheo >= 0.0) {
-                    bail!("melanin concentrations must be finite and non-negative");
-                }
-                mu_a_from_melanin(eu, pheo)
-            }
-        };
+        let mu_a = absorption(
+            hair.mu_a,
+            self.eumelanin,
+            self.pheomelanin,
+            DVec3::from_array(hair.default_mu_a),
+        )?;
         let params = FiberParams {
             eta: hair.eta,
             beta,
@@ -106,6 +97,19 @@ impl PathArgs {
         };
         params.validate()?;
         Ok(params)
+    }
+
+    /// The model's flags checked against the scene's hair before anything is loaded.
+    fn check(&self, spec: &SceneSpec) -> Result<()> {
+        match self.model {
+            TraceModel::Marschner => Ok(()),
+            TraceModel::Chiang2016 => {
+                self.fiber(spec, BETA.named("beta_m").check(self.beta_m)?)?;
+                BETA.named("beta_n").check(self.beta_n)?;
+                Ok(())
+            }
+            _ => self.fiber(spec, self.beta).map(|_| ()),
+        }
     }
 
     fn models(&self, scene: &Scene) -> Result<StrandModels> {
@@ -122,7 +126,7 @@ impl PathArgs {
                 NonSeparable::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
             )),
             TraceModel::Chiang2016 => one(Box::new(Chiang2016::new(
-                self.fiber(&scene.spec, self.beta_m)?,
+                self.fiber(&scene.spec, BETA.named("beta_m").check(self.beta_m)?)?,
                 self.beta_n,
             )?)),
         }
@@ -151,14 +155,38 @@ impl PathArgs {
     }
 }
 
-/// Loads the scene without an SRBF fit (the path tracer samples the map itself).
-fn load(spec: SceneSpec) -> Result<Scene> {
-    Ok(Scene::load(spec, Some(Vec::new()))?)
+/// Loads the scene without an SRBF fit (the path tracer samples the map itself), once what
+/// it needs in memory is known to fit.
+fn load(mut spec: SceneSpec) -> Result<Scene> {
+    spec.method = cuticle_render::Method::Path;
+    crate::commands::render::load_within_memory(spec, None)
 }
+
+/// Samples per pixel of one path-traced image.
+pub const SPP: CountRange = CountRange {
+    name: "spp",
+    min: 1,
+    max: 1 << 20,
+};
+
+/// Most scattering events of one path.
+pub const MAX_DEPTH: CountRange = CountRange {
+    name: "max_depth",
+    min: 1,
+    max: 100_000,
+};
 
 /// `cuticle render --method path`.
 pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
     let options = args.options()?;
+    if !spec.multiple {
+        // Once ignored: the path tracer traced every order and said nothing.
+        bail!(
+            "--no-multiple (scene key multiple = false) is for --method srbf and brute; the \
+             path tracer's single scattering is --max-depth 1"
+        );
+    }
+    args.check(&spec)?;
     let scene = load(spec)?;
     let models = args.models(&scene)?;
     let params = args.json(&scene)?;
@@ -171,6 +199,8 @@ pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
         options.spp,
         models.name()
     );
+    // The folder is checked before the work, not after it.
+    let mut out_dir = OutDir::create(out, "render")?;
     let progress = bar(options.spp as u64, "trace");
     let report = |done: usize, _total: usize| progress.set_position(done as u64);
     let traced = cuticle_trace::render(&scene, &models, &options, &report);
@@ -178,10 +208,9 @@ pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
     if traced.image.pixels.iter().any(|p| !p.is_finite()) {
         bail!("the path tracer produced a non-finite pixel; nothing written");
     }
-    let mut out_dir = OutDir::create(out, "render")?;
     let tone = ToneMap::for_map(&scene.env);
-    out_dir.write("image.png", &png_bytes(&traced.image, tone)?)?;
-    out_dir.write("image.exr", &exr_bytes(&traced.image)?)?;
+    out_dir.write("image.png", &traced.image.png_bytes(tone)?)?;
+    out_dir.write("image.exr", &traced.image.exr_bytes()?)?;
     out_dir.write("standard_error.exr", &standard_error_exr(&traced)?)?;
     out_dir.finish(record(&scene, params, &traced)?)?;
     let s = &traced.stats;
@@ -233,11 +262,12 @@ fn record(scene: &Scene, path: Value, t: &TraceImage) -> Result<Value> {
 
 /// The per-pixel standard error of the mean, linear RGB EXR.
 fn standard_error_exr(t: &TraceImage) -> Result<Vec<u8>> {
-    exr_bytes(&Image {
+    let error = Image {
         width: t.image.width,
         height: t.image.height,
         pixels: t.standard_error.clone(),
-    })
+    };
+    Ok(error.exr_bytes()?)
 }
 
 /// `cuticle bench trace`'s flags.
@@ -274,18 +304,19 @@ pub fn bench(args: &TraceBenchArgs) -> Result<()> {
         height: args.height,
         ..SceneSpec::default()
     };
-    let scene = load(spec)?;
-    let accel = Accel::build(&scene.groom);
-    let casting = cast_rays(&scene, &accel);
-    let models = StrandModels::marschner(&scene)?;
     let options = TraceOptions {
-        spp: args.spp.max(1),
+        spp: SPP.check(args.spp.into())? as u32,
         seed: 1,
         path: PathOptions {
-            max_depth: args.max_depth.max(1),
+            max_depth: MAX_DEPTH.check(args.max_depth.into())? as u32,
             ..PathOptions::default()
         },
     };
+    let scene = load(spec)?;
+    let out = OutDir::create(&args.out, "bench")?;
+    let accel = Accel::build(&scene.groom);
+    let casting = cast_rays(&scene, &accel);
+    let models = StrandModels::marschner(&scene)?;
     let traced = cuticle_trace::render_with(&scene, &accel, &models, &options, &|_, _| {});
     let s = &traced.stats;
     let threads = rayon::current_num_threads();
@@ -297,7 +328,7 @@ pub fn bench(args: &TraceBenchArgs) -> Result<()> {
         "path": {"spp": traced.spp, "max_depth": options.path.max_depth, "rays": s.rays, "seconds": s.trace_seconds,
                  "rays_per_second": s.rays_per_second(), "spp_per_second": traced.spp as f64 / s.trace_seconds},
     });
-    OutDir::create(&args.out, "bench")?.finish(record)?;
+    out.finish(record)?;
     println!(
         "{} tubes, BVH {:.3} s; ray casting {:.2} M rays/s ({:.2} M per thread, {threads} threads); path tracing {:.2} M rays/s, {:.3} spp/s ({:.2} s per spp)",
         accel.tube_count(),

@@ -4,6 +4,7 @@
 
 use crate::commands::render::{SceneArgs, spec_from};
 use anyhow::Result;
+use cuticle_fiber::ranges::CountRange;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Clone, Debug)]
@@ -14,7 +15,7 @@ pub struct Args {
     /// exit.
     #[arg(long)]
     screenshot: Option<PathBuf>,
-    /// UI frames to wait after the first full-quality frame before the screenshot.
+    /// UI frames to wait after the first full-quality frame before the screenshot (0 to 1000).
     #[arg(long, default_value_t = 2)]
     after_frames: usize,
     /// Where the window's Save and screenshot buttons write.
@@ -22,9 +23,20 @@ pub struct Args {
     out: PathBuf,
 }
 
+/// Frames `--screenshot` waits: a few let the interface settle; a billion never end.
+const AFTER_FRAMES: CountRange = CountRange {
+    name: "after_frames",
+    min: 0,
+    max: 1000,
+};
+
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
     spec.validate()?;
+    AFTER_FRAMES.check_usize(args.after_frames)?;
+    // The window's first frame needs what `render`'s does: refused before the window opens.
+    spec.memory_need(lights.as_ref().map(Vec::len), rayon::current_num_threads())
+        .check(crate::memory::available())?;
     if spec.method == cuticle_render::Method::Path {
         anyhow::bail!(
             "the window shades with srbf or brute; --method path is for `cuticle render`"

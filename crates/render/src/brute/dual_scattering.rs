@@ -25,7 +25,8 @@
 //! them, and ½M_b the normal density of mean 2Δ̄_b − θ_o and deviation 2σ̄_b. Each θ_i integral
 //! is a product of two normal densities (a normal density again, in closed form) times a smooth
 //! factor, by 8-point Gauss–Legendre over the product's mean ± 4 deviations within
-//! [−π/2, π/2] (within 0.4 % of a fine rule in the tests, on narrow, wide and clipped windows).
+//! [−π/2, π/2] (this file's tests bound it against a fine rule on narrow, wide and clipped
+//! windows).
 //! Unlike the SRBF path, each channel keeps its own σ̄_f. Fibers are circular, as in Zinke's
 //! model and the SRBF path.
 

@@ -6,9 +6,11 @@
 //!    light's bandwidth ([`shadow`]);
 //! 4. shading: L_o at every visible point in its fiber frame ([`fiber_frames`]), by the SRBF
 //!    path ([`crate::srbf`]) or the brute force ([`crate::brute`]), with [`progress`];
-//! 5. resolve: subsamples averaged into pixels.
+//! 5. resolve: subsamples averaged into pixels; the [`Image`](renderer::Image) as files
+//!    ([`image_file`]).
 
 pub mod fiber_frames;
+pub mod image_file;
 pub mod progress;
 pub mod raster;
 pub mod renderer;

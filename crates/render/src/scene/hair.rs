@@ -108,6 +108,9 @@ impl HairParams {
     pub const BETA_R_DEG: ParamRange = ParamRange::closed(0.004, 60.0);
     /// Each channel of σ_a (per unit radius).
     pub const MU_A: ParamRange = ParamRange::closed(0.0, 1000.0);
+    /// The open (1/√2, √2) of `ranges::ECCENTRICITY` as closed ends just inside it (0.70711 >
+    /// 1/√2, 1.41421 < √2), not the constants themselves, which the range refuses.
+    #[allow(clippy::approx_constant)]
     pub const ECCENTRICITY: ParamRange = ParamRange::closed(0.70711, 1.41421);
     pub const CAUSTIC_WIDTH_DEG: ParamRange = ParamRange::closed(0.01, 90.0);
     pub const CAUSTIC_FADE: ParamRange = ParamRange::open_below(0.0, 2.0);

@@ -272,6 +272,17 @@ impl Scene {
         if let Some(lights) = &lights {
             cuticle_light::validate_lights(lights)?;
         }
+        Self::load_lit(spec, lights)
+    }
+
+    /// As [`Scene::load`], without SRBF lights: for the path tracer, which samples the map
+    /// itself (`--method path`).
+    pub fn load_without_lights(spec: SceneSpec) -> Result<Self, SceneError> {
+        spec.validate()?;
+        Self::load_lit(spec, Some(Vec::new()))
+    }
+
+    fn load_lit(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         let mut groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
         if let Some(path) = &spec.strand_absorption {
             groom = groom

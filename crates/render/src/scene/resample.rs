@@ -3,10 +3,10 @@
 //! a segment spanning several opacity-map texels shows its two endpoints' light, blended.
 //! Where hair thins the last point of a strand is its most exposed one, so a coarsely sampled
 //! file (straight.hair: 15 segments of 5 units for a groom 60 units in bounding radius, 11
-//! opacity texels a segment at 256) spreads unshadowed light up the whole last segment: the
-//! bottom fifth of that groom's direct light was 1.4–1.7× what it is with its segments split
-//! in four (measured under st_fagans_interior_1k.hdr at 360 × 240). Splitting costs shading time in proportion to the
-//! points it adds, so only segments longer than [`MAX_SEGMENT`] of the bounding radius are
+//! opacity texels a segment at 256) spreads unshadowed light up the whole last segment, and the
+//! bottom fifth of that groom's direct light comes out brighter than with its segments split
+//! (the figure and the command that measures it: BENCHMARKS.md). Splitting costs shading time
+//! in proportion to the points it adds, so only segments longer than [`MAX_SEGMENT`] of the bounding radius are
 //! split, into equal pieces.
 
 use cuticle_groom::{Groom, GroomParts};

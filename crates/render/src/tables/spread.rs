@@ -3,8 +3,9 @@
 //! function ψ_f, Xu et al. 2011 eq. 5), with Z making ∫ g^u s dω / Z = 1 (dω = cos θ dθ dφ, ∫ s dφ =
 //! 1). Zinke and Xu et al. 2011 write Z = cos θ_j, its narrow limit; for a wide spread near the
 //! fiber's axis (a sky straight above hanging hair) cos θ_j → 0 while the spread still reaches
-//! inclinations with cos θ > 0, and the narrow limit overstates the light (multiple scattering
-//! twice the brute force's in tests/multiple.rs, per-point relative RMSE 2.75). This table holds the exact Z(θ_j, σ) = ∫_{−π/2}^{π/2} N(θ; θ_j, σ) cos θ dθ over the
+//! inclinations with cos θ > 0, and the narrow limit overstates the light (tests/multiple.rs
+//! measures both against the brute force; the figures are in BENCHMARKS.md). This table holds
+//! the exact Z(θ_j, σ) = ∫_{−π/2}^{π/2} N(θ; θ_j, σ) cos θ dθ over the
 //! same interval the shading integrals cover; Z(θ_j, 0) = cos θ_j.
 
 use crate::tables::grid::Grid2;

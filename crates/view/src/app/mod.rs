@@ -564,8 +564,8 @@ impl ViewApp {
                     .find(|n| !dir.join(format!("frame-{n:04}.png")).exists())
                     .unwrap_or(0);
                 let stem = dir.join(format!("frame-{n:04}"));
-                let png = crate::image_file::png_bytes(&frame.image, tone)?;
-                let exr = crate::image_file::exr_bytes(&frame.image)?;
+                let png = frame.image.png_bytes(tone).map_err(|e| e.to_string())?;
+                let exr = frame.image.exr_bytes().map_err(|e| e.to_string())?;
                 crate::image_file::write_atomic(&stem.with_extension("exr"), &exr)?;
                 crate::image_file::write_atomic(&stem.with_extension("png"), &png)?;
                 Ok(stem)
@@ -620,13 +620,15 @@ fn check(look: &Look) -> Result<(), String> {
 
 fn write_color_image(path: &std::path::Path, image: &egui::ColorImage) -> Result<(), String> {
     let [w, h] = image.size;
-    let bytes: Vec<u8> = image.pixels.iter().flat_map(|c| c.to_array()).collect();
-    let rgba = image::RgbaImage::from_raw(w as u32, h as u32, bytes)
-        .ok_or_else(|| "the screenshot has the wrong size".to_string())?;
-    let mut png = std::io::Cursor::new(Vec::new());
-    rgba.write_to(&mut png, image::ImageFormat::Png)
-        .map_err(|e| format!("cannot encode the screenshot: {e}"))?;
-    crate::image_file::write_atomic(path, &png.into_inner())
+    // The window is opaque: its alpha is 255 everywhere.
+    let rgb: Vec<u8> = image
+        .pixels
+        .iter()
+        .flat_map(|c| [c.r(), c.g(), c.b()])
+        .collect();
+    let png = cuticle_light::image_file::png_bytes(w, h, rgb)
+        .map_err(|e| format!("the screenshot: {e}"))?;
+    crate::image_file::write_atomic(path, &png)
 }
 
 /// A callback that asks `ctx` for a repaint.
