@@ -36,6 +36,7 @@ pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
 pub mod tilted_attenuation;
+pub mod tilted_mirror;
 
 pub use deon2011::DEon2011;
 pub use frame::{FiberAngles, FiberFrame, wrap_pi};
