@@ -30,10 +30,28 @@ pub fn exr_bytes(img: &LatLongImage) -> Result<Vec<u8>> {
     Ok(bytes.into_inner())
 }
 
+/// Most pixels a lat-long image read back may claim (4000 × 1000, the largest `lobes` writes,
+/// is 4e6): a hostile header is refused before anything is allocated.
+const MAX_READ_PIXELS: usize = 1 << 24;
+
 /// Reads a lat-long EXR written by [`exr_bytes`] (or any RGB EXR; alpha is ignored): for the
 /// commands that consume a sweep (validation).
-#[allow(dead_code)]
 pub fn read_exr(path: &Path) -> Result<LatLongImage> {
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    if let Some(size) = meta
+        .headers
+        .iter()
+        .map(|h| h.layer_size)
+        .find(|s| s.0.saturating_mul(s.1) > MAX_READ_PIXELS || s.0 == 0 || s.1 == 0)
+    {
+        bail!(
+            "cannot read {}: its header claims {}x{} pixels",
+            path.display(),
+            size.0,
+            size.1
+        );
+    }
     let image = read_first_rgba_layer_from_file(
         path,
         |size, _| LatLongImage::zeros(LatLongGrid::new(size.0, size.1)),
@@ -134,7 +152,7 @@ pub fn azimuthal_csv(images: &[(&str, &LatLongImage)]) -> Result<String> {
 
 /// Writes `NAME.exr` for each image (and `NAME.png` beside it when `png`), then
 /// `azimuthal.csv` over all of them, each file atomically.
-pub fn write_images(out: &OutDir, images: &[(&str, &LatLongImage)], png: bool) -> Result<()> {
+pub fn write_images(out: &mut OutDir, images: &[(&str, &LatLongImage)], png: bool) -> Result<()> {
     for (name, img) in images {
         out.write(&format!("{name}.exr"), &exr_bytes(img)?)?;
         if png {

@@ -3,6 +3,7 @@
 
 mod commands;
 mod latlong_io;
+mod memory;
 mod output;
 mod progress;
 mod svg_plot;
@@ -35,7 +36,12 @@ enum Command {
     /// Environment light: fit an environment map with J SRBF lights (fit).
     Env(commands::env::Args),
     /// Render a groom under environment light (Xu et al. 2011's SRBF renderer, or --method brute).
-    Render(commands::render::Args),
+    Render(Box<commands::render::Args>),
+    /// Two renders' output folders against each other over the hair: per-channel means, ratio,
+    /// relative RMSE, for the whole hair and its bottom fifth (compare.json).
+    Compare(commands::compare::Args),
+    /// The live look-development window: edit the hair, lighting and camera, paint colour onto strands.
+    View(commands::view::Args),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),
     /// Benchmarks: the renderer on the paper's workload (render).
@@ -52,12 +58,38 @@ fn main() {
         Command::Sim(args) => commands::sim::run(args),
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Env(args) => commands::env::run(args),
-        Command::Render(args) => commands::render::run(args),
+        Command::Render(args) => commands::render::run(*args),
         Command::Validate(args) => commands::validate::run(args),
+        Command::Compare(args) => commands::compare::run(args),
+        Command::View(args) => commands::view::run(args),
         Command::Bench(command) => commands::render::bench(command),
     };
     if let Err(err) = result {
-        eprintln!("error: {err:#}");
+        eprintln!("error: {}", one_line(&err));
         std::process::exit(1);
     }
+}
+
+/// The error and its causes on one line, each cause once: a message that already quotes its
+/// cause (as `#[error("…: {source}")]` does) does not repeat it, and a cause spread over lines
+/// (a parser's excerpt) is joined.
+fn one_line(err: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in err.chain() {
+        let text = cause
+            .to_string()
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        if text.is_empty() || line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
 }

@@ -1,25 +1,12 @@
 //! The fiber commands end to end: bad parameters get one clear error line and a non-zero exit;
 //! good ones write every file docs/conventions.md §5 promises.
 
-use std::process::Command;
+mod common;
 
-fn cuticle(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_cuticle"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+use common::cuticle;
 
 fn assert_one_clear_error(args: &[&str], needle: &str) {
-    let out = cuticle(args);
-    assert!(!out.status.success(), "{args:?} succeeded");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert!(
-        lines.iter().any(|l| l.contains(needle)),
-        "{args:?}: {stderr}"
-    );
-    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    common::assert_refused(args, needle);
 }
 
 #[test]
@@ -29,18 +16,18 @@ fn bad_fiber_parameters_are_refused_with_one_clear_error() {
     assert_one_clear_error(&["lobes", "--beta", "-0.1", "--out", out], "beta");
     assert_one_clear_error(
         &["lobes", "--eta", "1", "--out", out],
-        "eta must be greater than 1",
+        "eta must be a finite number in (1, 10], got 1",
     );
     assert_one_clear_error(
         &["lobes", "--beta", "NaN", "--out", out],
-        "beta must be a finite number",
+        "beta must be a finite number in [0.0001, 1], got NaN",
     );
     assert_one_clear_error(&["lobes", "--mu-a", "0.1,-2,0.3", "--out", out], "mu_a");
-    assert_one_clear_error(&["lobes", "--theta-i", "2", "--out", out], "--theta-i");
+    assert_one_clear_error(&["lobes", "--theta-i", "2", "--out", out], "theta_i");
     assert_one_clear_error(&["furnace", "--model", "fancy", "--out", out], "fancy");
     assert_one_clear_error(&["furnace", "--alpha-deg", "45", "--out", out], "alpha");
     assert!(
-        std::fs::read_dir(dir.path()).unwrap().next().is_none(),
+        common::names(dir.path()).is_empty(),
         "a refused command wrote files"
     );
 }

@@ -40,6 +40,11 @@ const NODES_PER_PANEL: usize = 8;
 const PHI_PANELS: usize = 32;
 /// The widest θ panel, far from every lobe, at resolution 1.
 const WIDEST_THETA_PANEL: f64 = 0.2;
+/// Most panels of the finest width on each side of the cone, at resolution 1: what bounds the
+/// rule's cost for small β, where the span of the tilt shifts holds ever more lobe widths
+/// (about 1.5 |max_shift| / (0.275 β) of them). Below β ≈ 0.0025 at α = 2° the bound widens the
+/// finest panels beyond half a lobe width, and the error estimate grows accordingly.
+pub const MAX_FINE_PANELS: usize = 128;
 
 /// ∫ S dω_o for light at `theta_i`.
 pub fn albedo(model: &dyn FiberModel, theta_i: f64, rule: FurnaceRule) -> AlbedoEstimate {
@@ -79,8 +84,8 @@ fn integrate(
 /// Panel edges in θ_o: fine near the cone −θ_i (and its shifted copies), growing by 1.5× away.
 fn theta_breaks(theta_i: f64, rule: FurnaceRule, resolution: usize) -> Vec<f64> {
     let center = -theta_i;
-    let finest = (0.5 * 0.55 * rule.beta / resolution as f64).max(1e-5);
     let flat = rule.max_shift.abs() * 1.5 + 4.0 * rule.beta;
+    let finest = (0.5 * 0.55 * rule.beta).max(flat / MAX_FINE_PANELS as f64) / resolution as f64;
     let mut breaks = vec![-0.5 * PI, 0.5 * PI];
     for side in [-1.0, 1.0] {
         let mut offset = 0.0;
@@ -123,6 +128,28 @@ mod tests {
     use crate::lobe::Lobe;
     use crate::longitudinal::LongitudinalLobe;
     use crate::model::FiberSample;
+
+    /// The rule's cost is bounded for any β (issue 9: β = 1e-3 took 50 s and 1e-9 never
+    /// ended): the θ panels stay within the fine-panel bound plus the graded ones.
+    #[test]
+    fn the_rule_is_bounded_for_tiny_beta() {
+        let panels = |beta: f64| {
+            let rule = FurnaceRule {
+                beta,
+                max_shift: 6f64.to_radians() * 2.0,
+                resolution: 2,
+            };
+            theta_breaks(0.5, rule, 2).len()
+        };
+        let bound = 2 * 2 * MAX_FINE_PANELS + 200;
+        for beta in [0.04, 1e-3, crate::ranges::MIN_BETA, 1e-9] {
+            assert!(panels(beta) <= bound, "β {beta}: {} panels", panels(beta));
+        }
+        assert!(
+            panels(0.04) < panels(1e-3),
+            "finer panels for narrower lobes"
+        );
+    }
 
     /// A narrow longitudinal lobe at the cone times a uniform azimuth: albedo exactly 1.
     struct Narrow(f64);

@@ -1,6 +1,6 @@
 //! Hair fiber scattering: the shared fiber frame and lat-long grid, the special functions and
 //! Fresnel factors the models share, and the models themselves — [`Marschner2003`],
-//! [`DEon2011`] and [`NonSeparable`] — each able to evaluate S (docs/conventions.md §3), importance-sample
+//! [`DEon2011`], [`NonSeparable`] and [`Chiang2016`] (near-field in h, [`FiberModel::eval_at`]) — each able to evaluate S (docs/conventions.md §3), importance-sample
 //! it and report the sampling pdf through [`FiberModel`]. [`table::AzimuthalTable`] is the fast
 //! path for the azimuthal terms of the last two, [`furnace`] the white-furnace integrator.
 //!
@@ -18,6 +18,7 @@ pub mod absorption;
 pub mod attenuation;
 pub mod azimuthal;
 pub mod bravais;
+pub mod chiang2016;
 pub mod cubic;
 pub mod deon2011;
 pub mod frame;
@@ -31,6 +32,7 @@ pub mod model;
 pub mod nonseparable;
 pub mod nusselt;
 pub mod params;
+pub mod ranges;
 pub mod special;
 pub mod table;
 #[cfg(test)]
@@ -38,6 +40,7 @@ pub(crate) mod testing;
 pub mod tilted_attenuation;
 pub mod tilted_mirror;
 
+pub use chiang2016::Chiang2016;
 pub use deon2011::DEon2011;
 pub use frame::{FiberAngles, FiberFrame, wrap_pi};
 pub use latlong::{LatLongGrid, LatLongImage};
@@ -46,3 +49,4 @@ pub use marschner2003::Marschner2003;
 pub use model::{FiberModel, FiberSample};
 pub use nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
+pub use ranges::{Range, RangeError};

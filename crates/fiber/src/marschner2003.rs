@@ -70,12 +70,12 @@ use crate::frame::{FiberAngles, wrap_pi};
 use crate::fresnel::fresnel_oblique;
 use crate::lobe::{Lobe, LobeValues, channel_mean};
 use crate::model::{FiberModel, FiberSample, per_steradian, select_and_remap};
-use crate::params::{FiberParams, MAX_BETA, MAX_MU_A, ParamError};
+use crate::params::FiberParams;
+use crate::ranges::{self, RangeError};
 use crate::special::{GaussLegendre, normal_pdf, normal_quantile};
 use glam::DVec3;
-use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI, SQRT_2};
+use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 use std::sync::OnceLock;
-use thiserror::Error;
 
 /// The parameters of Marschner 2003 (its Table 1), angles in radians.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -129,21 +129,9 @@ impl Default for MarschnerParams {
     }
 }
 
-/// Why a parameter set cannot describe a Marschner fiber.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum MarschnerError {
-    #[error(transparent)]
-    Fiber(#[from] ParamError),
-    #[error("{name} must lie in {range}, got {value}")]
-    OutOfRange {
-        name: &'static str,
-        value: f64,
-        range: &'static str,
-    },
-}
-
-/// The largest |α_R|: the largest scale tilt, which [`Marschner2003::from_fiber`] maps to it.
-const MAX_ALPHA_R: f64 = crate::params::MAX_ALPHA_DEG.to_radians();
+/// Why a parameter set cannot describe a Marschner fiber: the parameter (named as a scene
+/// key, angles in degrees), its value and its range.
+pub type MarschnerError = RangeError;
 
 impl MarschnerParams {
     /// (α_p, β_p) of M_R, M_TT, M_TRT from α_R, β_R (Marschner 2003 Table 1: α_TT = −α_R/2,
@@ -153,95 +141,18 @@ impl MarschnerParams {
         [(a, b), (-0.5 * a, 0.5 * b), (-1.5 * a, 2.0 * b)]
     }
 
-    /// Checks every field, returning the first fault.
+    /// Checks every field against its range ([`crate::ranges`]), returning the first fault.
     pub fn validate(&self) -> Result<(), MarschnerError> {
-        self.check_finite()?;
-        self.check_fiber()?;
-        self.check_ranges()
-    }
-
-    fn check_finite(&self) -> Result<(), MarschnerError> {
-        let fields = [
-            ("eta", self.eta),
-            ("alpha_r", self.alpha_r),
-            ("beta_r", self.beta_r),
-            ("mu_a", self.mu_a.x),
-            ("mu_a", self.mu_a.y),
-            ("mu_a", self.mu_a.z),
-            ("eccentricity", self.eccentricity),
-            ("caustic_width", self.caustic_width),
-            ("glint_scale", self.glint_scale),
-            ("caustic_fade", self.caustic_fade),
-            ("caustic_limit", self.caustic_limit),
-        ];
-        match fields.into_iter().find(|(_, v)| !v.is_finite()) {
-            Some((name, value)) => Err(ParamError::NotFinite { name, value }.into()),
-            None => Ok(()),
-        }
-    }
-
-    /// The faults every model shares, reported as [`ParamError`].
-    fn check_fiber(&self) -> Result<(), MarschnerError> {
-        if self.eta <= 1.0 {
-            return Err(ParamError::EtaTooSmall(self.eta).into());
-        }
-        match self
-            .mu_a
-            .to_array()
-            .into_iter()
-            .find(|c| !(0.0..=MAX_MU_A).contains(c))
-        {
-            Some(value) => Err(ParamError::AbsorptionOutOfRange {
-                value,
-                max: MAX_MU_A,
-            }
-            .into()),
-            None => Ok(()),
-        }
-    }
-
-    fn check_ranges(&self) -> Result<(), MarschnerError> {
-        let (a, b, e) = (self.alpha_r, self.beta_r, self.eccentricity);
-        let (w, k, fade, limit) = (
-            self.caustic_width,
-            self.glint_scale,
-            self.caustic_fade,
-            self.caustic_limit,
-        );
-        let checks = [
-            (
-                "alpha_r",
-                a,
-                a.abs() <= MAX_ALPHA_R,
-                "[-0.349, 0.349] radians",
-            ),
-            ("beta_r", b, b > 0.0 && b <= MAX_BETA, "(0, 1] radians"),
-            // η* stays above 1 for every η > 1 exactly when 1/√2 < a < √2 (Xu et al. 2011 eq. 24).
-            (
-                "eccentricity",
-                e,
-                e > FRAC_1_SQRT_2 && e < SQRT_2,
-                "(0.7071, 1.4142)",
-            ),
-            (
-                "caustic_width",
-                w,
-                w > 0.0 && w <= FRAC_PI_2,
-                "(0, 1.5708] radians",
-            ),
-            ("glint_scale", k, (0.0..=100.0).contains(&k), "[0, 100]"),
-            ("caustic_fade", fade, fade > 0.0 && fade <= 10.0, "(0, 10]"),
-            (
-                "caustic_limit",
-                limit,
-                limit > 0.0 && limit <= 2.0,
-                "(0, 2]",
-            ),
-        ];
-        match checks.into_iter().find(|c| !c.2) {
-            Some((name, value, _, range)) => Err(MarschnerError::OutOfRange { name, value, range }),
-            None => Ok(()),
-        }
+        ranges::ETA.check(self.eta)?;
+        ranges::ALPHA_R_DEG.check_radians(self.alpha_r)?;
+        ranges::BETA_R_DEG.check_radians(self.beta_r)?;
+        ranges::MU_A.check_all(&self.mu_a.to_array())?;
+        ranges::ECCENTRICITY.check(self.eccentricity)?;
+        ranges::CAUSTIC_WIDTH_DEG.check_radians(self.caustic_width)?;
+        ranges::GLINT_SCALE.check(self.glint_scale)?;
+        ranges::CAUSTIC_FADE.check(self.caustic_fade)?;
+        ranges::CAUSTIC_LIMIT.check(self.caustic_limit)?;
+        Ok(())
     }
 }
 
@@ -1240,32 +1151,24 @@ mod tests {
             f(&mut p);
             p.validate().unwrap_err()
         };
-        assert_eq!(bad(|p| p.eta = 1.0), ParamError::EtaTooSmall(1.0).into());
-        assert!(matches!(
-            bad(|p| p.beta_r = f64::NAN),
-            MarschnerError::Fiber(ParamError::NotFinite { name: "beta_r", .. })
-        ));
-        assert!(matches!(
-            bad(|p| p.mu_a.y = -1.0),
-            MarschnerError::Fiber(ParamError::AbsorptionOutOfRange { .. })
-        ));
         for (name, f) in [
             (
-                "alpha_r",
-                (|p: &mut MarschnerParams| p.alpha_r = 1.0) as fn(&mut MarschnerParams),
+                "eta",
+                (|p: &mut MarschnerParams| p.eta = 1.0) as fn(&mut MarschnerParams),
             ),
-            ("beta_r", |p| p.beta_r = 0.0),
+            ("beta_r_deg", |p| p.beta_r = f64::NAN),
+            ("mu_a", |p| p.mu_a.y = -1.0),
+            ("alpha_r_deg", |p| p.alpha_r = 1.0),
+            ("beta_r_deg", |p| p.beta_r = 0.0),
             ("eccentricity", |p| p.eccentricity = 0.5),
-            ("caustic_width", |p| p.caustic_width = 0.0),
+            ("eccentricity", |p| p.eccentricity = 1.42),
+            ("caustic_width_deg", |p| p.caustic_width = 0.0),
             ("glint_scale", |p| p.glint_scale = -1.0),
             ("caustic_fade", |p| p.caustic_fade = 0.0),
             ("caustic_limit", |p| p.caustic_limit = 3.0),
         ] {
             let err = bad(f);
-            assert!(
-                matches!(err, MarschnerError::OutOfRange { name: n, .. } if n == name),
-                "{name}: {err}"
-            );
+            assert_eq!(err.name, name, "{err}");
             assert!(err.to_string().starts_with(name));
         }
     }
@@ -1293,7 +1196,7 @@ mod tests {
         let bad = FiberParams { eta: 0.9, ..fiber };
         assert!(matches!(
             Marschner2003::from_fiber(&bad),
-            Err(MarschnerError::Fiber(_))
+            Err(e) if e.name == "eta"
         ));
     }
 

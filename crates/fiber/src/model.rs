@@ -34,6 +34,23 @@ pub trait FiberModel: Send + Sync {
 
     /// The density (per steradian) with which [`FiberModel::sample`] draws ω_o.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64;
+
+    /// S at a known offset h ∈ [−1, 1] of the ray from ω_i across the fiber's projected width
+    /// (docs/conventions.md §2): the near field, whose average over h is [`FiberModel::eval`].
+    /// A far-field model (every model but Chiang 2016) has no h and returns its S.
+    fn eval_at(&self, wi: FiberAngles, wo: FiberAngles, _h: f64) -> LobeValues {
+        self.eval(wi, wo)
+    }
+
+    /// The density with which [`FiberModel::sample_at`] draws ω_o at offset h.
+    fn pdf_at(&self, wi: FiberAngles, wo: FiberAngles, _h: f64) -> f64 {
+        self.pdf(wi, wo)
+    }
+
+    /// An outgoing direction at offset h, weight [`FiberModel::eval_at`] / [`FiberModel::pdf_at`].
+    fn sample_at(&self, wi: FiberAngles, _h: f64, u: [f64; 4]) -> Option<FiberSample> {
+        self.sample(wi, u)
+    }
 }
 
 /// Converts a density in (θ, φ) to a density per steradian.

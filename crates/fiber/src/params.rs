@@ -1,8 +1,8 @@
 //! The physical parameters every model shares, and their validation.
 
+use crate::ranges::{self, RangeError};
 use glam::DVec3;
 use serde::Serialize;
-use thiserror::Error;
 
 /// A fiber: relative index η, surface roughness β (Beckmann, as the simulator uses it), scale
 /// tilt α (radians) and interior absorption μ_a per unit radius (RGB).
@@ -26,68 +26,17 @@ impl Default for FiberParams {
     }
 }
 
-/// Why a parameter set cannot describe a fiber.
-#[derive(Clone, Debug, Error, PartialEq)]
-pub enum ParamError {
-    #[error("{name} must be a finite number, got {value}")]
-    NotFinite { name: &'static str, value: f64 },
-    #[error("eta must be greater than 1 (a fiber denser than its surroundings), got {0}")]
-    EtaTooSmall(f64),
-    #[error("beta (roughness) must be positive and at most {max}, got {value}")]
-    BetaOutOfRange { value: f64, max: f64 },
-    #[error("alpha (scale tilt) must lie within ±{max_deg} degrees, got {value_deg} degrees")]
-    AlphaOutOfRange { value_deg: f64, max_deg: f64 },
-    #[error("mu_a (absorption) must be non-negative and at most {max}, got {value}")]
-    AbsorptionOutOfRange { value: f64, max: f64 },
-}
-
-/// Largest roughness the models are meant for (and tested to).
-pub const MAX_BETA: f64 = 1.0;
-/// Largest scale tilt, in degrees.
-pub const MAX_ALPHA_DEG: f64 = 20.0;
-/// Largest absorption per unit radius (beyond it every internal lobe is black to f64).
-pub const MAX_MU_A: f64 = 1000.0;
+/// Why a parameter set cannot describe a fiber: the parameter, its value and its range.
+pub type ParamError = RangeError;
 
 impl FiberParams {
-    /// Checks every field, returning the first fault in a sentence a user understands.
+    /// Checks every field against its range ([`crate::ranges`]), returning the first fault in a
+    /// sentence a user understands.
     pub fn validate(&self) -> Result<(), ParamError> {
-        let finite = |name, value: f64| {
-            if value.is_finite() {
-                Ok(())
-            } else {
-                Err(ParamError::NotFinite { name, value })
-            }
-        };
-        finite("eta", self.eta)?;
-        finite("beta", self.beta)?;
-        finite("alpha", self.alpha)?;
-        for c in self.mu_a.to_array() {
-            finite("mu_a", c)?;
-        }
-        if self.eta <= 1.0 {
-            return Err(ParamError::EtaTooSmall(self.eta));
-        }
-        if !(self.beta > 0.0 && self.beta <= MAX_BETA) {
-            return Err(ParamError::BetaOutOfRange {
-                value: self.beta,
-                max: MAX_BETA,
-            });
-        }
-        if self.alpha.to_degrees().abs() > MAX_ALPHA_DEG {
-            return Err(ParamError::AlphaOutOfRange {
-                value_deg: self.alpha.to_degrees(),
-                max_deg: MAX_ALPHA_DEG,
-            });
-        }
-        for c in self.mu_a.to_array() {
-            if !(0.0..=MAX_MU_A).contains(&c) {
-                return Err(ParamError::AbsorptionOutOfRange {
-                    value: c,
-                    max: MAX_MU_A,
-                });
-            }
-        }
-        Ok(())
+        ranges::ETA.check(self.eta)?;
+        ranges::BETA.check(self.beta)?;
+        ranges::ALPHA_DEG.check_radians(self.alpha)?;
+        ranges::MU_A.check_all(&self.mu_a.to_array())
     }
 }
 
@@ -98,34 +47,22 @@ mod tests {
     #[test]
     fn defaults_are_valid_and_each_fault_is_named() {
         assert_eq!(FiberParams::default().validate(), Ok(()));
-        let p = FiberParams {
-            beta: -0.1,
-            ..Default::default()
-        };
-        assert!(matches!(
-            p.validate(),
-            Err(ParamError::BetaOutOfRange { .. })
-        ));
-        let p = FiberParams {
-            eta: 1.0,
-            ..Default::default()
-        };
-        assert_eq!(p.validate(), Err(ParamError::EtaTooSmall(1.0)));
-        let p = FiberParams {
+        let fault = |p: FiberParams| p.validate().unwrap_err();
+        let p = FiberParams::default();
+        assert_eq!(fault(FiberParams { beta: -0.1, ..p }).name, "beta");
+        assert_eq!(fault(FiberParams { eta: 1.0, ..p }).name, "eta");
+        assert_eq!(fault(FiberParams { eta: 1e160, ..p }).name, "eta");
+        let nan = fault(FiberParams {
             mu_a: DVec3::new(0.1, f64::NAN, 0.0),
-            ..Default::default()
-        };
-        assert!(matches!(
-            p.validate(),
-            Err(ParamError::NotFinite { name: "mu_a", .. })
-        ));
-        let p = FiberParams {
-            alpha: 0.5,
-            ..Default::default()
-        };
-        assert!(matches!(
-            p.validate(),
-            Err(ParamError::AlphaOutOfRange { .. })
-        ));
+            ..p
+        });
+        assert_eq!(nan.name, "mu_a");
+        assert!(
+            nan.value.is_nan(),
+            "the NaN is named, not a neighbour: {nan}"
+        );
+        let alpha = fault(FiberParams { alpha: 0.5, ..p });
+        assert_eq!(alpha.name, "alpha_deg");
+        assert!((alpha.value - 0.5f64.to_degrees()).abs() < 1e-12);
     }
 }

@@ -1,8 +1,10 @@
 //! Finite everywhere (issue 2): over the whole domain — θ to ±π/2, β from 0.001 to 1, η from
 //! 1.01 to 3, μ_a from 0 to 100, α to ±10° — every value eval, sample and pdf return is finite
-//! and non-negative, for d'Eon 2011 and the non-separable model (Marschner 2003 has its own).
+//! and non-negative, for d'Eon 2011, the non-separable model and Chiang 2016 (far field and at an
+//! offset h; Marschner 2003 has its own).
 
-use cuticle_fiber::{DEon2011, FiberAngles, FiberModel, FiberParams, NonSeparable};
+use cuticle_fiber::chiang2016::AtOffset;
+use cuticle_fiber::{Chiang2016, DEon2011, FiberAngles, FiberModel, FiberParams, NonSeparable};
 use glam::DVec3;
 use proptest::prelude::*;
 use std::f64::consts::FRAC_PI_2;
@@ -77,10 +79,15 @@ proptest! {
         theta_o in angle(),
         phi in -3.2f64..3.2,
         u in proptest::array::uniform4(0.0f64..1.0),
+        beta_n in 0.001f64..1.0,
+        h in prop_oneof![Just(-1.0), Just(1.0), -1.0f64..1.0],
     ) {
         let wi = FiberAngles::new(theta_i, 0.0);
         let wo = FiberAngles::new(theta_o, phi);
         check(&DEon2011::new(params).unwrap(), wi, wo, u)?;
         check(&NonSeparable::new(params).unwrap(), wi, wo, u)?;
+        let chiang = Chiang2016::new(params, beta_n).unwrap();
+        check(&AtOffset { model: &chiang, h }, wi, wo, u)?;
+        check(&chiang, wi, wo, u)?;
     }
 }

@@ -18,6 +18,7 @@ pub mod geometry;
 pub mod groom;
 pub mod hair_file;
 pub mod procedural;
+pub mod strand_absorption;
 pub mod summary;
 
 mod convert;
@@ -27,3 +28,4 @@ pub use error::{GroomError, HairArray, HairFileError, ParamsError};
 pub use geometry::Aabb;
 pub use groom::{Groom, GroomParts, Strand};
 pub use hair_file::{ArrayFlags, HairDefaults, HairFile, HairInfo};
+pub use strand_absorption::StrandAbsorptionError;

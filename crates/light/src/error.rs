@@ -32,4 +32,8 @@ pub enum LightError {
     },
     #[error("invalid fit options: {0}")]
     FitOptions(String),
+    #[error("light {index}: {message}")]
+    Light { index: usize, message: String },
+    #[error("a list of lights holds 1 to {max} lights, got {0}", max = crate::srbf::MAX_LIGHTS)]
+    LightCount(usize),
 }

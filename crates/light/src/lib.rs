@@ -54,5 +54,7 @@ pub use fit::{FitOptions, FitProgress, FitReport, fit_srbf, fit_srbf_with_progre
 pub use latlong::{direction_from_angles, direction_to_angles};
 pub use load::{load_env_map, load_or_default};
 pub use procedural_sky::ProceduralSky;
-pub use srbf::{SrbfLight, SrbfProduct, evaluate_lights, relative_l2_error};
+pub use srbf::{
+    MAX_LIGHTS, SrbfLight, SrbfProduct, evaluate_lights, relative_l2_error, validate_lights,
+};
 pub use tonemap::{ToneMap, comparison_image};

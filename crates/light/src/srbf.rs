@@ -9,6 +9,17 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
+/// Most SRBF lights a fit makes or a lights file may hold (shading costs grow with their number).
+pub const MAX_LIGHTS: usize = 512;
+/// The narrowest bandwidth λ a light may have, radians: a sun a pixel wide in a map 8,192
+/// pixels tall, the finest a fit makes (`FitOptions`), is 2.3e-4.
+pub const MIN_BANDWIDTH: f64 = 1e-4;
+/// The widest bandwidth: beyond 4 a light is constant over the sphere to within 12 %.
+pub const MAX_BANDWIDTH: f64 = 4.0;
+/// The largest coefficient (radiance at the centre): far beyond any measured sky (the sun is
+/// about 1e9 in W m⁻² sr⁻¹), and small enough that shading sums stay finite in f32 images.
+pub const MAX_COEFFICIENT: f64 = 1e20;
+
 /// One SRBF light: L_j G(ω; ω_j, λ_j) (Xu et al. 2011 eq. 1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SrbfLight {
@@ -31,6 +42,34 @@ pub struct SrbfProduct {
 }
 
 impl SrbfLight {
+    /// Why this light cannot shine, if it cannot: a zero or non-finite direction, a bandwidth
+    /// outside [[`MIN_BANDWIDTH`], [`MAX_BANDWIDTH`]], or a coefficient channel that is
+    /// negative, non-finite or above [`MAX_COEFFICIENT`].
+    pub fn fault(&self) -> Option<String> {
+        let d = self.direction;
+        if !d.is_finite() || d.length() < 1e-6 {
+            return Some(format!("direction {:?} is not a direction", d.to_array()));
+        }
+        let b = self.bandwidth as f64;
+        if !(b.is_finite() && (MIN_BANDWIDTH..=MAX_BANDWIDTH).contains(&b)) {
+            return Some(format!(
+                "bandwidth {b:e} must be a finite number in [{MIN_BANDWIDTH:e}, {MAX_BANDWIDTH}]"
+            ));
+        }
+        let c = self.coefficient;
+        if !c
+            .to_array()
+            .iter()
+            .all(|&v| (v as f64).is_finite() && (0.0..=MAX_COEFFICIENT).contains(&(v as f64)))
+        {
+            return Some(format!(
+                "coefficient {:?} must be finite numbers in [0, {MAX_COEFFICIENT:e}]",
+                c.to_array()
+            ));
+        }
+        None
+    }
+
     /// A light centred on `direction` (normalised here).
     pub fn new(direction: Vec3, bandwidth: f32, coefficient: Vec3) -> Self {
         Self {
@@ -100,6 +139,22 @@ impl SrbfLight {
     /// ∫ (L_a G_a)(L_b G_b) dω per channel.
     pub fn inner_product(&self, other: &SrbfLight) -> DVec3 {
         (self.coefficient * other.coefficient).as_dvec3() * self.basis_inner_product(other)
+    }
+}
+
+/// Checks a list of lights read from outside (a lights file): 1 to [`MAX_LIGHTS`] of them,
+/// each without a [`SrbfLight::fault`].
+pub fn validate_lights(lights: &[SrbfLight]) -> Result<(), crate::LightError> {
+    if lights.is_empty() || lights.len() > MAX_LIGHTS {
+        return Err(crate::LightError::LightCount(lights.len()));
+    }
+    match lights
+        .iter()
+        .enumerate()
+        .find_map(|(i, l)| l.fault().map(|f| (i, f)))
+    {
+        Some((index, message)) => Err(crate::LightError::Light { index, message }),
+        None => Ok(()),
     }
 }
 
@@ -174,6 +229,32 @@ pub fn relative_l2_error(map: &EnvMap, lights: &[SrbfLight]) -> f64 {
 mod tests {
     use super::*;
     use crate::latlong::direction_from_angles;
+
+    /// Every light that would shade NaN, inf or negative pixels is refused with its index; an
+    /// empty or oversized list is refused too.
+    #[test]
+    fn hostile_lights_are_refused() {
+        let good = SrbfLight::new(Vec3::Y, 0.5, Vec3::ONE);
+        assert!(validate_lights(&[good]).is_ok());
+        let spoiled: [fn(&mut SrbfLight); 8] = [
+            |l| l.bandwidth = 0.0,
+            |l| l.bandwidth = f32::INFINITY,
+            |l| l.bandwidth = f32::NAN,
+            |l| l.direction = Vec3::ZERO,
+            |l| l.direction.x = f32::NAN,
+            |l| l.coefficient.y = f32::INFINITY,
+            |l| l.coefficient.z = -1.0,
+            |l| l.coefficient.x = 1e30,
+        ];
+        for spoil in spoiled {
+            let mut bad = good;
+            spoil(&mut bad);
+            let e = validate_lights(&[good, bad]).unwrap_err().to_string();
+            assert!(e.starts_with("light 1: "), "{e}");
+        }
+        assert!(validate_lights(&[]).is_err());
+        assert!(validate_lights(&vec![good; MAX_LIGHTS + 1]).is_err());
+    }
 
     /// ∫_{S²} f dω by a product rule: Gauss–Legendre-free midpoint in z = sin θ (exact measure)
     /// and φ, fine enough for lobes down to λ = 0.05.

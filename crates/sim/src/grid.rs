@@ -14,6 +14,7 @@
 
 use crate::params::{SimError, SimParams};
 use cuticle_fiber::LatLongGrid;
+use cuticle_fiber::ranges::short;
 use serde::{Deserialize, Deserializer, Serialize};
 
 /// One point of a sweep; rays, seed and grid are the sweep's.
@@ -43,17 +44,22 @@ fn grey_or_rgb<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
 
 impl SweepConfig {
     /// The configuration's folder name, from its parameters in shortest round-trip form, e.g.
-    /// `ti0.75_a-2_b0.04_mu0.25_eta1.55` (μ_a as `mu0.1-0.2-0.3` when the channels differ).
+    /// `ti0.75_a-2_b0.04_mu0.25_eta1.55` (μ_a as `mu0.1-0.2-0.3` when the channels differ),
+    /// with an exponent for numbers far from 1 (`mu1e-300`) so that no name runs long.
     pub fn dir_name(&self) -> String {
-        let [r, g, b] = self.mu_a;
+        let [r, g, b] = self.mu_a.map(short);
         let mu = if r == g && g == b {
-            format!("{r}")
+            r
         } else {
             format!("{r}-{g}-{b}")
         };
         format!(
             "ti{}_a{}_b{}_mu{}_eta{}",
-            self.theta_i, self.alpha_deg, self.beta, mu, self.eta
+            short(self.theta_i),
+            short(self.alpha_deg),
+            short(self.beta),
+            mu,
+            short(self.eta)
         )
     }
 
@@ -146,6 +152,11 @@ mod tests {
             assert_eq!(names.len(), n);
         }
         assert_eq!(small()[0].dir_name(), "ti0.25_a-4_b0.02_mu0_eta1.55");
+        let tiny = SweepConfig {
+            mu_a: [1e-300; 3],
+            ..small()[0].clone()
+        };
+        assert_eq!(tiny.dir_name(), "ti0.25_a-4_b0.02_mu1e-300_eta1.55");
     }
 
     #[test]

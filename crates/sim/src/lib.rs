@@ -26,7 +26,6 @@
 
 mod absorption;
 mod accumulate;
-mod atomic;
 pub mod beckmann;
 mod bin;
 pub mod cylinder;

@@ -1,11 +1,11 @@
 //! The inputs of one simulation, and their validation.
 
 use cuticle_fiber::LatLongGrid;
-use std::f64::consts::FRAC_PI_2;
+use cuticle_fiber::ranges::{self, CountRange};
 use thiserror::Error;
 
 /// The most paths one simulation traces (the fixed-point tallies' headroom, see `accumulate`).
-pub const MAX_RAYS: u64 = 1_000_000_000;
+pub const MAX_RAYS: u64 = ranges::SAMPLES.max;
 
 /// One configuration of the rough fiber and the light (d'Eon et al. 2014 §2.1).
 #[derive(Clone, Debug, PartialEq)]
@@ -51,47 +51,36 @@ pub enum SimError {
     InvalidParam(String),
 }
 
-fn check(ok: bool, what: impl FnOnce() -> String) -> Result<(), SimError> {
-    if ok {
-        Ok(())
-    } else {
-        Err(SimError::InvalidParam(what()))
+impl From<cuticle_fiber::RangeError> for SimError {
+    fn from(e: cuticle_fiber::RangeError) -> Self {
+        SimError::InvalidParam(e.to_string())
     }
 }
 
+/// The number of paths, within [`MAX_RAYS`].
+pub const RAYS: CountRange = CountRange {
+    name: "rays",
+    min: 1,
+    max: MAX_RAYS,
+};
+
 impl SimParams {
-    /// Checks every parameter: finite numbers, β > 0, η > 1, μ_a ≥ 0, |θ_i| < π/2, |α| < π/4,
-    /// 0 < rays ≤ [`MAX_RAYS`] and a non-empty grid.
+    /// Checks every parameter against the ranges every model shares
+    /// ([`cuticle_fiber::ranges`]): θ_i, α, β, η and μ_a, 0 < rays ≤ [`MAX_RAYS`], and a
+    /// non-empty grid.
     pub fn validate(&self) -> Result<(), SimError> {
-        let t = self.theta_i;
-        check(t.is_finite() && t.abs() < FRAC_PI_2, || {
-            format!("theta_i must be finite with |theta_i| < pi/2 (got {t})")
-        })?;
-        let a = self.alpha;
-        check(a.is_finite() && a.abs() < FRAC_PI_2 / 2.0, || {
-            format!(
-                "alpha must be finite with |alpha| < 45 degrees (got {} degrees)",
-                a.to_degrees()
-            )
-        })?;
-        let b = self.beta;
-        check(b.is_finite() && b > 0.0, || {
-            format!("beta must be finite and > 0 (got {b})")
-        })?;
-        let e = self.eta;
-        check(e.is_finite() && e > 1.0, || {
-            format!("eta must be finite and > 1 (got {e})")
-        })?;
-        let mu = self.mu_a;
-        check(mu.iter().all(|m| m.is_finite() && *m >= 0.0), || {
-            format!("mu_a must be finite and >= 0 (got {mu:?})")
-        })?;
-        check(self.rays > 0 && self.rays <= MAX_RAYS, || {
-            format!("rays must be between 1 and {MAX_RAYS} (got {})", self.rays)
-        })?;
-        check(!self.grid.is_empty(), || {
-            "the lat-long grid must not be empty".to_string()
-        })
+        ranges::THETA_I.check(self.theta_i)?;
+        ranges::ALPHA_DEG.check_radians(self.alpha)?;
+        ranges::BETA.check(self.beta)?;
+        ranges::ETA.check(self.eta)?;
+        ranges::MU_A.check_all(&self.mu_a)?;
+        RAYS.check(self.rays)?;
+        if self.grid.is_empty() {
+            return Err(SimError::InvalidParam(
+                "the lat-long grid must not be empty".into(),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -133,6 +122,14 @@ mod tests {
             },
             SimParams {
                 alpha: 1.0,
+                ..Default::default()
+            },
+            SimParams {
+                beta: 100.0,
+                ..Default::default()
+            },
+            SimParams {
+                eta: 1e300,
                 ..Default::default()
             },
         ];

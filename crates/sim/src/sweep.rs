@@ -1,12 +1,12 @@
 //! Running a sweep: each configuration in its own folder under the sweep root, complete exactly
-//! when its `sim.json` exists. Images are written first and `sim.json` last, each atomically, so
-//! a killed run loses only the configuration in flight, and a resumed run skips complete ones
-//! and redoes (from an emptied folder) any that was cut short.
+//! when its `sim.json` exists. The writer puts a configuration's whole set in place at once
+//! (the command line stages it beside the folder), so a killed run loses only the configuration
+//! in flight; a resumed run skips complete ones, redoes (from an emptied folder) any that was
+//! cut short, and refuses a folder whose complete configurations were made with other
+//! settings (rays, seed, grid), rather than mixing two runs in one sweep.
 
-use crate::atomic::write_atomic;
 use crate::grid::SweepConfig;
 use crate::params::SimError;
-use crate::record::sim_json;
 use crate::shard::Shard;
 use crate::simulate::{SimResult, simulate};
 use cuticle_fiber::LatLongGrid;
@@ -28,10 +28,17 @@ pub enum SweepError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("writing images into {path}: {message}")]
+    #[error("writing configuration {path}: {message}")]
     Images { path: PathBuf, message: String },
     #[error("two configurations share the folder name {0}")]
     Duplicate(String),
+    #[error(
+        "{path} was made with {what}; resume with the settings it was made with, or write to \
+         another folder"
+    )]
+    OtherSettings { path: PathBuf, what: String },
+    #[error("{path}: {message}")]
+    BadRecord { path: PathBuf, message: String },
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> SweepError + '_ {
@@ -41,8 +48,10 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> SweepError + '_ {
     }
 }
 
-/// Writes a result's images into a configuration folder (the CLI's EXR/PNG writer, or a test's).
-pub type ImageWriter<'a> = &'a (dyn Fn(&Path, &SimResult) -> Result<(), String> + Sync);
+/// Writes a configuration's whole set into its folder: the images and, last, `sim.json`
+/// ([`crate::sim_json`]), so that the folder holds `sim.json` only once everything else is there
+/// (the CLI's staged EXR/PNG writer, or a test's).
+pub type ConfigWriter<'a> = &'a (dyn Fn(&Path, &SimResult) -> Result<(), String> + Sync);
 
 /// A sweep: the configurations this shard owns, where they go, and the settings they share.
 pub struct Sweep {
@@ -110,6 +119,46 @@ impl Sweep {
         self.dir(config).join(RECORD).is_file()
     }
 
+    /// Checks that every complete configuration of this shard was made with this sweep's rays,
+    /// seed and grid, and is the configuration its folder name says: a resumed sweep never
+    /// mixes configurations of two settings.
+    pub fn check_settings(&self) -> Result<(), SweepError> {
+        for (_, config) in &self.configs {
+            if self.is_complete(config) {
+                self.check_record(config)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn check_record(&self, config: &SweepConfig) -> Result<(), SweepError> {
+        let path = self.dir(config).join(RECORD);
+        let text = fs::read_to_string(&path).map_err(io_err(&path))?;
+        let bad = |message: String| SweepError::BadRecord {
+            path: path.clone(),
+            message,
+        };
+        let value: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| bad(format!("not JSON: {e}")))?;
+        let made = config_of_record(&text).map_err(|e| bad(e.to_string()))?;
+        let p = &value["params"];
+        let grid = [self.grid.width, self.grid.height];
+        let differences = [
+            (p["rays"].as_u64() != Some(self.rays))
+                .then(|| format!("rays {} (this run: {})", p["rays"], self.rays)),
+            (p["seed"].as_u64() != Some(self.seed))
+                .then(|| format!("seed {} (this run: {})", p["seed"], self.seed)),
+            (p["grid"] != serde_json::json!(grid))
+                .then(|| format!("grid {} (this run: {grid:?})", p["grid"])),
+            (!same_config(&made, config))
+                .then(|| format!("parameters {made:?} (this run: {config:?})")),
+        ];
+        match differences.into_iter().flatten().next() {
+            Some(what) => Err(SweepError::OtherSettings { path, what }),
+            None => Ok(()),
+        }
+    }
+
     /// Configurations of this shard already complete on disk.
     pub fn complete_count(&self) -> usize {
         self.configs
@@ -122,10 +171,11 @@ impl Sweep {
     /// cancel flag, a limit) and calling `on_done` after each is on disk.
     pub fn run(
         &self,
-        write_images: ImageWriter,
+        write: ConfigWriter,
         stop: &dyn Fn() -> bool,
         on_done: &mut dyn FnMut(&SweepConfig, &SimResult),
     ) -> Result<SweepSummary, SweepError> {
+        self.check_settings()?;
         let start = Instant::now();
         let todo: Vec<&SweepConfig> = self
             .configs
@@ -143,7 +193,7 @@ impl Sweep {
             if stop() {
                 break;
             }
-            let result = self.run_one(config, write_images)?;
+            let result = self.run_one(config, write)?;
             summary.ran += 1;
             summary.remaining -= 1;
             summary.rays += result.rays;
@@ -153,26 +203,22 @@ impl Sweep {
         Ok(summary)
     }
 
-    /// Simulates one configuration into an emptied folder: images first, `sim.json` last.
+    /// Simulates one configuration and has `write` put its set in place of an incomplete
+    /// folder (one a killed run left without `sim.json`, removed first).
     pub fn run_one(
         &self,
         config: &SweepConfig,
-        write_images: ImageWriter,
+        write: ConfigWriter,
     ) -> Result<SimResult, SweepError> {
         let dir = self.dir(config);
-        if dir.exists() {
+        if dir.exists() && !self.is_complete(config) {
             fs::remove_dir_all(&dir).map_err(io_err(&dir))?;
         }
-        fs::create_dir_all(&dir).map_err(io_err(&dir))?;
         let result = simulate(&config.params(self.rays, self.seed, self.grid), &|_, _| {})?;
-        write_images(&dir, &result).map_err(|message| SweepError::Images {
+        write(&dir, &result).map_err(|message| SweepError::Images {
             path: dir.clone(),
             message,
         })?;
-        let record = dir.join(RECORD);
-        let mut text = serde_json::to_string_pretty(&sim_json(&result)).expect("JSON of numbers");
-        text.push('\n');
-        write_atomic(&record, text.as_bytes()).map_err(io_err(&record))?;
         Ok(result)
     }
 }
@@ -183,6 +229,9 @@ pub fn list_complete(root: &Path) -> Result<Vec<(SweepConfig, PathBuf)>, SweepEr
     let mut out = Vec::new();
     for entry in fs::read_dir(root).map_err(io_err(root))? {
         let dir = entry.map_err(io_err(root))?.path();
+        if is_hidden(&dir) {
+            continue;
+        }
         let record = dir.join(RECORD);
         if !record.is_file() {
             continue;
@@ -194,6 +243,22 @@ pub fn list_complete(root: &Path) -> Result<Vec<(SweepConfig, PathBuf)>, SweepEr
     }
     out.sort_by(|a, b| a.1.cmp(&b.1));
     Ok(out)
+}
+
+/// A hidden entry (`.NAME…`): a stage of a configuration being written, never one itself.
+pub fn is_hidden(path: &Path) -> bool {
+    path.file_name()
+        .is_some_and(|n| n.to_string_lossy().starts_with('.'))
+}
+
+/// Equal up to the rounding of α's trip through radians in `sim.json`.
+fn same_config(a: &SweepConfig, b: &SweepConfig) -> bool {
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0);
+    close(a.theta_i, b.theta_i)
+        && close(a.alpha_deg, b.alpha_deg)
+        && close(a.beta, b.beta)
+        && close(a.eta, b.eta)
+        && a.mu_a.iter().zip(&b.mu_a).all(|(x, y)| close(*x, *y))
 }
 
 fn config_of_record(text: &str) -> Result<SweepConfig, serde_json::Error> {

@@ -1,5 +1,6 @@
 //! A sweep resumes: complete configurations (those with `sim.json`) are skipped, an interrupted
-//! run leaves no damaged one, and shards cover the sweep exactly once.
+//! run leaves no damaged one, shards cover the sweep exactly once, and a folder made with other
+//! settings is refused rather than mixed.
 
 use cuticle_fiber::LatLongGrid;
 use cuticle_sim::sweep::RECORD;
@@ -9,13 +10,19 @@ use std::fs;
 use std::path::Path;
 use std::time::SystemTime;
 
-/// Stands in for the CLI's EXR writer: one small file per lobe.
+/// Stands in for the CLI's staged EXR writer: one small file per lobe and `sim.json`, written
+/// beside the folder and renamed into place.
 fn write_images(dir: &Path, r: &SimResult) -> Result<(), String> {
+    let name = dir.file_name().unwrap().to_string_lossy();
+    let stage = dir.with_file_name(format!(".{name}.staging"));
+    fs::create_dir_all(&stage).map_err(|e| e.to_string())?;
     for (name, e) in cuticle_sim::LOBE_NAMES.iter().zip(&r.energy) {
-        fs::write(dir.join(format!("{name}.txt")), format!("{}\n", e.x))
+        fs::write(stage.join(format!("{name}.txt")), format!("{}\n", e.x))
             .map_err(|e| e.to_string())?;
     }
-    Ok(())
+    let record = serde_json::to_string(&cuticle_sim::sim_json(r)).unwrap();
+    fs::write(stage.join(RECORD), record).map_err(|e| e.to_string())?;
+    fs::rename(&stage, dir).map_err(|e| e.to_string())
 }
 
 fn configs() -> Vec<SweepConfig> {
@@ -135,6 +142,35 @@ fn shards_share_the_sweep_without_overlap() {
     seen.sort();
     assert_eq!(seen, (0..6).collect::<Vec<_>>());
     assert_eq!(list_complete(tmp.path()).unwrap().len(), 6);
+}
+
+#[test]
+fn a_resume_with_other_settings_is_refused_before_anything_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let s = sweep(tmp.path(), Shard::ALL);
+    let first = Cell::new(0);
+    s.run(&write_images, &|| first.get() == 2, &mut |_, _| {
+        first.set(first.get() + 1)
+    })
+    .unwrap();
+    let grid = LatLongGrid::new(40, 10);
+    for (rays, seed, grid, what) in [
+        (200_000, 1, grid, "rays"),
+        (20_000, 9, grid, "seed"),
+        (20_000, 1, LatLongGrid::new(80, 20), "grid"),
+    ] {
+        let other = Sweep::new(&configs(), Shard::ALL, tmp.path(), rays, seed, grid).unwrap();
+        let err = other
+            .run(&write_images, &|| false, &mut |_, _| {
+                panic!("ran a configuration")
+            })
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains(&format!("made with {what}")), "{err}");
+    }
+    // The same settings resume.
+    let resumed = s.run(&write_images, &|| false, &mut |_, _| {}).unwrap();
+    assert_eq!((resumed.ran, resumed.skipped), (4, 2));
 }
 
 #[test]

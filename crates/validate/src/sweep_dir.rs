@@ -1,10 +1,14 @@
 //! Reading a sweep's folder layout (`cuticle_sim::sweep`): one subfolder per configuration,
 //! complete when its `sim.json` exists, whose `"params"` give θ_i (radians), α (degrees, the
-//! simulator's sign), β, η, μ_a and the ray count. The lobe images beside it (`R.exr`, …) are
-//! read by the caller, which owns the EXR codec.
+//! simulator's sign), β, η, μ_a, the ray count and the grid, and whose `"energy"` gives each
+//! lobe's. The images beside it (`R.exr`, …, `total.exr`) and `azimuthal.csv` are read by the
+//! caller, which owns the EXR codec, and checked here against the record
+//! ([`SimConfig::check_set`]): validation relies on a configuration only once everything in
+//! its folder agrees.
 
 use crate::error::ValidateError;
-use cuticle_fiber::FiberParams;
+use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::{FiberParams, LatLongImage};
 use glam::DVec3;
 use serde::Serialize;
 use serde_json::Value;
@@ -26,9 +30,19 @@ pub struct SimConfig {
     pub eta: f64,
     pub mu_a: [f64; 3],
     pub rays: u64,
+    /// The lat-long grid of the images, [width, height].
+    pub grid: [usize; 2],
+    /// ∫ S dω of R, TT, TRT, TRRT, rest and their total (channel means), as recorded.
+    pub energy: [f64; 6],
     /// The simulation's random seed, where its record gives one.
     pub seed: Option<u64>,
 }
+
+/// The lobe files of a configuration, in lobe order, then their sum.
+pub const FILES: [&str; 6] = ["R", "TT", "TRT", "TRRT", "rest", "total"];
+
+/// How far a recorded figure may sit from the same figure of the f32 images.
+const F32_TOLERANCE: f64 = 1e-5;
 
 impl SimConfig {
     /// Reads `dir/sim.json`.
@@ -50,15 +64,48 @@ impl SimConfig {
         let number = |key: &str| {
             params[key]
                 .as_f64()
-                .ok_or_else(|| bad(format!("\"params\" has no number \"{key}\"")))
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(format!("\"params\" has no finite number \"{key}\"")))
         };
-        let mu: Vec<f64> = params["mu_a"]
-            .as_array()
-            .map(|a| a.iter().filter_map(Value::as_f64).collect())
-            .unwrap_or_default();
-        let mu_a: [f64; 3] = mu
+        let triple = |v: &Value, key: &str| -> Result<Vec<f64>, ValidateError> {
+            let a = v
+                .as_array()
+                .ok_or_else(|| bad(format!("{key} is not a list")))?;
+            a.iter()
+                .map(|x| {
+                    x.as_f64()
+                        .filter(|v| v.is_finite())
+                        .ok_or_else(|| bad(format!("{key} holds {x}, not a finite number")))
+                })
+                .collect()
+        };
+        let mu_a: [f64; 3] = triple(&params["mu_a"], "\"params\".\"mu_a\"")?
             .try_into()
             .map_err(|_| bad("\"params\".\"mu_a\" is not [r, g, b]".into()))?;
+        let grid: Vec<usize> = triple(&params["grid"], "\"params\".\"grid\"")?
+            .into_iter()
+            .filter(|v| v.fract() == 0.0 && *v >= 1.0 && *v <= 1e5)
+            .map(|v| v as usize)
+            .collect();
+        let grid: [usize; 2] = grid
+            .try_into()
+            .map_err(|_| bad("\"params\".\"grid\" is not [width, height]".into()))?;
+        let rays = record["rays"]
+            .as_u64()
+            .filter(|&r| r > 0)
+            .ok_or_else(|| bad("\"rays\" is not a positive whole number".into()))?;
+        let mut energy = [0.0; 6];
+        for (e, name) in energy.iter_mut().zip(FILES) {
+            *e = record["energy"][name]
+                .as_f64()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| {
+                    bad(format!(
+                        "\"energy\".\"{name}\" is {}, not a finite number",
+                        record["energy"][name]
+                    ))
+                })?;
+        }
         Ok(Self {
             dir: dir.to_path_buf(),
             name: dir
@@ -70,7 +117,9 @@ impl SimConfig {
             beta: number("beta")?,
             eta: number("eta")?,
             mu_a,
-            rays: record["rays"].as_u64().unwrap_or(0),
+            rays,
+            grid,
+            energy,
             seed: params["seed"].as_u64(),
         })
     }
@@ -95,6 +144,61 @@ impl SimConfig {
         )
     }
 
+    /// Checks the configuration's images and `azimuthal.csv` against each other and against
+    /// `sim.json`: each on the recorded grid, finite and non-negative; `total` the sum of the
+    /// lobes; each image's energy the recorded one; the CSV's columns the images' densities in
+    /// φ, row by row. `images` are R, TT, TRT, TRRT, rest, total.
+    pub fn check_set(&self, images: &[LatLongImage; 6], csv: &str) -> Result<(), ValidateError> {
+        let bad = |file: &str, message: String| ValidateError::BadRecord {
+            path: self.dir.join(file),
+            message,
+        };
+        for (img, name) in images.iter().zip(FILES) {
+            let file = format!("{name}.exr");
+            if [img.grid.width, img.grid.height] != self.grid {
+                return Err(bad(
+                    &file,
+                    format!(
+                        "is {}x{}, but sim.json records a {}x{} grid",
+                        img.grid.width, img.grid.height, self.grid[0], self.grid[1]
+                    ),
+                ));
+            }
+            if let Some((k, p)) = img
+                .pixels
+                .iter()
+                .enumerate()
+                .find(|(_, p)| !p.is_finite() || p.min_element() < 0.0)
+            {
+                let (x, y) = (k % img.grid.width, k / img.grid.width);
+                return Err(bad(
+                    &file,
+                    format!("pixel ({x}, {y}) is {p}, not a finite non-negative value"),
+                ));
+            }
+            let e = channel_mean(img.energy());
+            let want = self.energy[FILES.iter().position(|f| *f == name).unwrap_or(0)];
+            if !close(e, want) {
+                return Err(bad(
+                    &file,
+                    format!("holds energy {e}, but sim.json records {want}"),
+                ));
+            }
+        }
+        let mut sum = LatLongImage::zeros(images[0].grid);
+        images[..5].iter().for_each(|i| sum.add(i));
+        if let Some(k) = (0..sum.pixels.len()).find(|&k| {
+            let (a, b) = (sum.pixels[k], images[5].pixels[k]);
+            !(0..3).all(|c| close(a[c], b[c]))
+        }) {
+            return Err(bad(
+                "total.exr",
+                format!("pixel {k} is not the sum of the lobes' pixels"),
+            ));
+        }
+        check_csv(images, csv).map_err(|m| bad("azimuthal.csv", m))
+    }
+
     /// The fiber the models are built for: α converted to radians with the simulator's sign.
     pub fn fiber_params(&self) -> FiberParams {
         FiberParams {
@@ -111,8 +215,56 @@ impl SimConfig {
     }
 }
 
+/// Equal to the precision the images are stored in.
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= F32_TOLERANCE * a.abs().max(b.abs()) + 1e-12
+}
+
+/// `azimuthal.csv` against the images: the header, one row per column of the grid at its φ,
+/// and each lobe's density in φ.
+fn check_csv(images: &[LatLongImage; 6], csv: &str) -> Result<(), String> {
+    let mut lines = csv.lines();
+    let header = format!("phi,{}", FILES.join(","));
+    if lines.next() != Some(header.as_str()) {
+        return Err(format!("does not start with the header {header}"));
+    }
+    let grid = images[0].grid;
+    let densities: Vec<Vec<f64>> = images
+        .iter()
+        .map(|i| i.azimuthal().into_iter().map(channel_mean).collect())
+        .collect();
+    let mut rows = 0;
+    for (j, line) in lines.enumerate() {
+        let values: Vec<f64> = line
+            .split(',')
+            .map(|v| v.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| format!("row {} is not numbers: {line:?}", j + 2))?;
+        if j >= grid.width || values.len() != 7 {
+            return Err(format!(
+                "row {} does not fit the {}-column grid",
+                j + 2,
+                grid.width
+            ));
+        }
+        let want = std::iter::once(grid.phi_center(j)).chain(densities.iter().map(|d| d[j]));
+        if !values.iter().zip(want).all(|(v, w)| close(*v, w)) {
+            return Err(format!("row {} disagrees with the images", j + 2));
+        }
+        rows += 1;
+    }
+    if rows != grid.width {
+        return Err(format!(
+            "has {rows} rows for a grid of {} columns",
+            grid.width
+        ));
+    }
+    Ok(())
+}
+
 /// The configurations under `root`, sorted by folder name: `root` itself when it holds a
-/// `sim.json`, else every subfolder, each of which must hold one.
+/// `sim.json`, else every subfolder (but the hidden stages of configurations being written),
+/// each of which must hold one.
 pub fn list_configs(root: &Path) -> Result<Vec<SimConfig>, ValidateError> {
     if !root.is_dir() {
         return Err(ValidateError::MissingFolder(root.to_path_buf()));
@@ -128,7 +280,7 @@ pub fn list_configs(root: &Path) -> Result<Vec<SimConfig>, ValidateError> {
         .map_err(io)?
         .filter_map(Result::ok)
         .map(|e| e.path())
-        .filter(|p| p.is_dir())
+        .filter(|p| p.is_dir() && !cuticle_sim::sweep::is_hidden(p))
         .collect();
     dirs.sort();
     if dirs.is_empty() {

@@ -4,11 +4,13 @@
 
 use crate::output::OutDir;
 use crate::progress::bar;
-use anyhow::{Result, bail};
+use anyhow::Result;
+use cuticle_fiber::ranges::CountRange;
 use cuticle_light::{
     EnvMap, FitOptions, FitProgress, FitReport, comparison_image, fit_srbf_with_progress,
     load_or_default,
 };
+use cuticle_render::scene::ENV_ROTATE_DEG;
 use serde_json::{Value, json};
 use std::io::Cursor;
 use std::path::PathBuf;
@@ -57,13 +59,17 @@ pub fn run(args: Args) -> Result<()> {
     }
 }
 
+/// Width of each panel of fit.png: 8192 × 4096 panels take 200 MB.
+const PREVIEW_WIDTH: CountRange = CountRange {
+    name: "preview_width",
+    min: 2,
+    max: 8192,
+};
+
 fn fit(args: &FitArgs) -> Result<()> {
-    if !args.rotate_deg.is_finite() {
-        bail!("--rotate-deg must be a finite number of degrees");
-    }
-    if args.preview_width < 2 {
-        bail!("--preview-width must be at least 2");
-    }
+    ENV_ROTATE_DEG.named("rotate_deg").check(args.rotate_deg)?;
+    PREVIEW_WIDTH.check_usize(args.preview_width)?;
+    let mut out = OutDir::create(&args.out, "env")?;
     let start = Instant::now();
     let map = load_or_default(&args.env)?.with_rotation(args.rotate_deg.to_radians());
     let load_seconds = start.elapsed().as_secs_f64();
@@ -74,14 +80,10 @@ fn fit(args: &FitArgs) -> Result<()> {
         ..FitOptions::default()
     };
     let report = fit_with_bar(&map, &options)?;
-    let out = OutDir::create(&args.out)?;
     let params = params_json(args, &options);
     out.write_json("lights.json", &lights_json(&report, &params))?;
     out.write("fit.png", &preview_png(&map, &report, args.preview_width)?)?;
-    out.write_json(
-        "env.json",
-        &env_json(&map, &report, &params, load_seconds, start),
-    )?;
+    out.finish(env_json(&map, &report, &params, load_seconds, start))?;
     println!(
         "{} SRBF lights fitted to {} ({}x{}) in {:.2} s: relative L2 error {:.4} on the full map; \
          wrote lights.json, fit.png, env.json to {}",

@@ -1,12 +1,20 @@
 //! Flags shared by the commands that evaluate a fiber model (docs/conventions.md §5), and building the
 //! model they name.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use cuticle_fiber::absorption::mu_a_from_melanin;
 use cuticle_fiber::nonseparable::Scales;
+use cuticle_fiber::ranges::{self, CountRange};
 use cuticle_fiber::{DEon2011, FiberModel, FiberParams, Marschner2003, NonSeparable};
 use glam::DVec3;
 use serde_json::{Value, json};
+
+/// Fixed-point iterations per sample of the non-separable model.
+pub const ITERATIONS: CountRange = CountRange {
+    name: "iterations",
+    min: 1,
+    max: 1000,
+};
 
 /// The models `--model` selects.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -69,10 +77,12 @@ impl FiberArgs {
             (Some(m), _, _) => DVec3::from_array(m),
             (None, None, None) => DVec3::new(0.12, 0.25, 0.5),
             (None, eu, pheo) => {
-                let (eu, pheo) = (eu.unwrap_or(0.0), pheo.unwrap_or(0.0));
-                if !(eu.is_finite() && pheo.is_finite() && eu >= 0.0 && pheo >= 0.0) {
-                    bail!("melanin concentrations must be finite and non-negative");
-                }
+                let eu = ranges::MELANIN
+                    .named("eumelanin")
+                    .check(eu.unwrap_or(0.0))?;
+                let pheo = ranges::MELANIN
+                    .named("pheomelanin")
+                    .check(pheo.unwrap_or(0.0))?;
                 mu_a_from_melanin(eu, pheo)
             }
         };
@@ -83,12 +93,7 @@ impl FiberArgs {
             mu_a,
         };
         params.validate()?;
-        if self.iterations == 0 || self.iterations > 1000 {
-            bail!(
-                "--iterations must be between 1 and 1000, got {}",
-                self.iterations
-            );
-        }
+        ITERATIONS.check(self.iterations.into())?;
         Ok(params)
     }
 

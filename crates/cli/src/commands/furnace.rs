@@ -8,6 +8,7 @@ use crate::output::OutDir;
 use anyhow::{Result, bail};
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
 use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::ranges;
 use cuticle_fiber::tilted_attenuation::{TiltedAttenuation, energy_budget};
 use rayon::prelude::*;
 use serde_json::json;
@@ -34,13 +35,18 @@ pub struct Args {
     out: PathBuf,
 }
 
+/// Most (θ_i, β) pairs one run integrates.
+const MAX_CASES: usize = 1000;
+
 pub fn run(args: Args) -> Result<()> {
-    if let Some(t) = args
-        .theta_i
-        .iter()
-        .find(|t| !(t.is_finite() && t.abs() < std::f64::consts::FRAC_PI_2))
-    {
-        bail!("every --theta-i must lie strictly between -pi/2 and pi/2, got {t}");
+    for &t in &args.theta_i {
+        ranges::THETA_I.check(t)?;
+    }
+    if args.theta_i.len() * args.betas.len().max(1) > MAX_CASES {
+        bail!(
+            "at most {MAX_CASES} (theta_i, beta) pairs, got {}",
+            args.theta_i.len() * args.betas.len().max(1)
+        );
     }
     let betas = if args.betas.is_empty() {
         vec![args.fiber.beta]
@@ -61,7 +67,7 @@ pub fn run(args: Args) -> Result<()> {
             .model()
         })
         .collect::<Result<Vec<_>>>()?;
-    let out = OutDir::create(&args.out)?;
+    let out = OutDir::create(&args.out, "furnace")?;
     let start = Instant::now();
     let progress = crate::progress::bar(cases.len() as u64, "furnace");
     let results: Vec<_> = cases
@@ -114,8 +120,8 @@ pub fn run(args: Args) -> Result<()> {
         })).collect::<Vec<_>>(),
         "seconds": start.elapsed().as_secs_f64(),
     });
-    out.write_json("furnace.json", &record)?;
-    println!("-> {}", args.out.join("furnace.json").display());
+    let record = out.finish(record)?;
+    println!("-> {}", record.display());
     Ok(())
 }
 

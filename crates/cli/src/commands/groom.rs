@@ -1,10 +1,12 @@
 //! `cuticle groom`: look inside `.hair` files (`info`) and write procedural grooms (`make`).
 
-use crate::output::write_atomic;
+use crate::output::OutDir;
 use anyhow::{Context, Result};
 use cuticle_groom::HairFile;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::summary::{HairFileSummary, Stats};
+use cuticle_render::scene::STRANDS;
+use cuticle_render::scene::memory::MemoryNeed;
 use serde_json::json;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -44,7 +46,7 @@ struct MakeArgs {
     /// Random seed [default: the preset's, 1].
     #[arg(long)]
     seed: Option<u64>,
-    /// The .hair file to write; FILE.json beside it records the parameters.
+    /// Output folder: `groom.hair` and `groom.json` (the parameters), written as one set.
     #[arg(long)]
     out: PathBuf,
 }
@@ -71,14 +73,27 @@ fn info(args: &InfoArgs) -> Result<()> {
     Ok(())
 }
 
+/// The groom file `make` writes into its folder.
+pub const HAIR_FILE: &str = "groom.hair";
+
+/// Bytes per point of a groom being made and encoded: the grown strands, the groom's arrays
+/// and the `.hair` bytes.
+const MAKE_BYTES_PER_POINT: u64 = 80;
+
 fn make(args: &MakeArgs) -> Result<()> {
     let params = make_params(args);
+    STRANDS.check_usize(params.strands)?;
+    let points = (params.strands as u64).saturating_mul(params.max_points as u64);
+    MemoryNeed {
+        parts: vec![("the groom", points.saturating_mul(MAKE_BYTES_PER_POINT))],
+    }
+    .check(crate::memory::available())?;
+    let mut out = OutDir::create(&args.out, "groom")?;
     let start = Instant::now();
     let groom = generate(&params)?;
     let bytes = groom.to_hair_bytes(&format!("cuticle groom make --preset {}", args.preset))?;
     let seconds = start.elapsed().as_secs_f64();
-    create_parent(&args.out)?;
-    write_atomic(&args.out, |f| f.write_all(&bytes).map_err(Into::into))?;
+    let hair = out.write(HAIR_FILE, &bytes)?;
     let record = json!({
         "params": { "preset": args.preset.name(), "groom": params },
         "strands": groom.strand_count(),
@@ -86,14 +101,10 @@ fn make(args: &MakeArgs) -> Result<()> {
         "bytes": bytes.len(),
         "seconds": seconds,
     });
-    let record_path = args.out.with_extension("json");
-    let text = serde_json::to_string_pretty(&record)? + "\n";
-    write_atomic(&record_path, |f| {
-        f.write_all(text.as_bytes()).map_err(Into::into)
-    })?;
+    let record_path = out.finish(record)?;
     println!(
         "wrote {}: {} strands, {} points ({} preset, seed {}) in {:.3} s; parameters in {}",
-        args.out.display(),
+        hair.display(),
         groom.strand_count(),
         groom.point_count(),
         args.preset,
@@ -102,15 +113,6 @@ fn make(args: &MakeArgs) -> Result<()> {
         record_path.display()
     );
     Ok(())
-}
-
-/// Creates the folder `path` will be written into, if missing.
-fn create_parent(path: &Path) -> Result<()> {
-    match path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        Some(dir) => std::fs::create_dir_all(dir)
-            .with_context(|| format!("cannot create output folder {}", dir.display())),
-        None => Ok(()),
-    }
 }
 
 /// The preset's parameters with the strand count and seed the user asked for.
@@ -197,7 +199,7 @@ mod tests {
             preset: Preset::Wavy,
             strands: Some(strands),
             seed: Some(seed),
-            out: dir.join("new folder").join("wavy.hair"),
+            out: dir.join("new folder").join("wavy"),
         }
     }
 
@@ -206,13 +208,12 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let args = make_args(dir.path(), 120, 9);
         make(&args).unwrap();
-        let file = HairFile::read(&args.out).unwrap();
+        let file = HairFile::read(&args.out.join(HAIR_FILE)).unwrap();
         assert_eq!(file.strand_count, 120);
         let expected = generate(&make_params(&args)).unwrap();
         assert_eq!(file.point_count as usize, expected.point_count());
         let record: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(args.out.with_extension("json")).unwrap())
-                .unwrap();
+            serde_json::from_slice(&std::fs::read(args.out.join("groom.json")).unwrap()).unwrap();
         assert_eq!(record["params"]["preset"], "wavy");
         assert_eq!(record["params"]["groom"]["seed"], 9);
         assert_eq!(record["strands"], 120);
@@ -223,8 +224,9 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let args = make_args(dir.path(), 30, 1);
         make(&args).unwrap();
-        let summary = HairFileSummary::of(&HairFile::read(&args.out).unwrap());
-        let text = describe(&args.out, &summary);
+        let path = args.out.join(HAIR_FILE);
+        let summary = HairFileSummary::of(&HairFile::read(&path).unwrap());
+        let text = describe(&path, &summary);
         assert!(
             text.contains(&format!("30 strands, {} points", summary.points)),
             "{text}"

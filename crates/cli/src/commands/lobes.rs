@@ -9,6 +9,7 @@ use crate::svg_plot::{Series, line_plot};
 use anyhow::{Result, bail};
 use cuticle_fiber::latlong::index_of_dir;
 use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::ranges::{self, CountRange};
 use cuticle_fiber::{FiberAngles, FiberModel, LatLongGrid, LatLongImage, Lobe};
 use glam::DVec3;
 use rand_core::{Rng, SeedableRng};
@@ -43,23 +44,27 @@ pub struct Args {
 /// number of threads.
 const CHUNK: u64 = 1 << 14;
 
+/// Width of the lobe images (their height is a quarter of it): at most 4000 × 1000, 0.5 GB
+/// for the five lobes and their sum.
+pub const WIDTH: CountRange = CountRange {
+    name: "width",
+    min: 8,
+    max: 4000,
+};
+
 pub fn run(args: Args) -> Result<()> {
-    if !(args.theta_i.is_finite() && args.theta_i.abs() < std::f64::consts::FRAC_PI_2) {
-        bail!(
-            "--theta-i must lie strictly between -pi/2 and pi/2, got {}",
-            args.theta_i
-        );
+    ranges::THETA_I.check(args.theta_i)?;
+    WIDTH.check_usize(args.width)?;
+    if !args.width.is_multiple_of(4) {
+        bail!("width must be a multiple of 4, got {}", args.width);
     }
-    if !(8..=4000).contains(&args.width) || !args.width.is_multiple_of(4) {
-        bail!(
-            "--width must be a multiple of 4 between 8 and 4000, got {}",
-            args.width
-        );
+    if args.samples > 0 {
+        ranges::SAMPLES.check(args.samples)?;
     }
     let model = args.fiber.model()?;
     let grid = LatLongGrid::new(args.width, args.width / 4);
     let wi = FiberAngles::new(args.theta_i, 0.0);
-    let out = OutDir::create(&args.out)?;
+    let mut out = OutDir::create(&args.out, "lobes")?;
 
     let start = Instant::now();
     let lobes = evaluate(model.as_ref(), wi, grid);
@@ -68,7 +73,7 @@ pub fn run(args: Args) -> Result<()> {
     let mut named: Vec<(&str, &LatLongImage)> =
         LOBE_FILES.iter().copied().zip(lobes.iter()).collect();
     named.push(("total", &total));
-    write_images(&out, &named, true)?;
+    write_images(&mut out, &named, true)?;
 
     let rule = cuticle_fiber::furnace::FurnaceRule {
         beta: args.fiber.beta,
@@ -90,11 +95,11 @@ pub fn run(args: Args) -> Result<()> {
         record["seconds"]["sample"] = json!(start.elapsed().as_secs_f64());
         record["samples"] = json!(args.samples);
         record["mean_iterations"] = json!(histogram.mean_iterations);
-        write_comparison(&out, &total, &histogram.image)?;
+        write_comparison(&mut out, &total, &histogram.image)?;
         record["sampled_energy"] = json!(channel_mean(histogram.image.energy()));
         record["relative_l1_sampled_vs_evaluated"] = json!(relative_l1(&histogram.image, &total));
     }
-    out.write_json("lobes.json", &record)?;
+    out.finish(record)?;
     println!(
         "{} at theta_i {:.3}: energy R {:.4} TT {:.4} TRT {:.4} TRRT {:.4} rest {:.4} total {:.4} -> {}",
         model.name(),
@@ -162,34 +167,30 @@ pub fn sample_histogram(
 ) -> SampleHistogram {
     let chunks = n.div_ceil(CHUNK);
     let progress = bar(chunks, "sample");
-    let partial: Vec<(Vec<DVec3>, u64)> = (0..chunks)
-        .into_par_iter()
-        .map(|c| {
-            let mut rng = Pcg64Mcg::seed_from_u64(seed ^ c.wrapping_mul(0x9E37_79B9_7F4A_7C15));
-            let mut pixels = vec![DVec3::ZERO; grid.len()];
-            let mut iterations = 0;
-            for _ in 0..CHUNK.min(n - c * CHUNK) {
-                let u = std::array::from_fn(|_| uniform(&mut rng));
-                if let Some(s) = model.sample(wi, u) {
-                    pixels[index_of_dir(&grid, s.wo.to_dir())] += s.weight;
-                    iterations += s.iterations as u64;
-                }
-            }
-            progress.inc(1);
-            (pixels, iterations)
-        })
-        .collect();
-    progress.finish_and_clear();
     let mut image = LatLongImage::zeros(grid);
     let mut iterations = 0;
-    for (pixels, it) in &partial {
-        image
-            .pixels
-            .iter_mut()
-            .zip(pixels)
-            .for_each(|(a, b)| *a += *b);
-        iterations += it;
+    // Chunks in batches, each batch's images summed in chunk order: memory stays a batch of
+    // images whatever n is, and the sum is the same on any number of threads.
+    let batch = rayon::current_num_threads() as u64;
+    for first in (0..chunks).step_by(batch as usize) {
+        let partial: Vec<(Vec<DVec3>, u64)> = (first..(first + batch).min(chunks))
+            .into_par_iter()
+            .map(|c| {
+                let histogram = sample_chunk(model, wi, grid, n, seed, c);
+                progress.inc(1);
+                histogram
+            })
+            .collect();
+        for (pixels, it) in &partial {
+            image
+                .pixels
+                .iter_mut()
+                .zip(pixels)
+                .for_each(|(a, b)| *a += *b);
+            iterations += it;
+        }
     }
+    progress.finish_and_clear();
     for k in 0..grid.height {
         let scale = 1.0 / (n as f64 * grid.pixel_solid_angle(k));
         image.pixels[k * grid.width..(k + 1) * grid.width]
@@ -200,6 +201,28 @@ pub fn sample_histogram(
         image,
         mean_iterations: iterations as f64 / n as f64,
     }
+}
+
+/// The summed weights of chunk `c`'s samples per pixel, and their fixed-point iterations.
+fn sample_chunk(
+    model: &dyn FiberModel,
+    wi: FiberAngles,
+    grid: LatLongGrid,
+    n: u64,
+    seed: u64,
+    c: u64,
+) -> (Vec<DVec3>, u64) {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed ^ c.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    let mut pixels = vec![DVec3::ZERO; grid.len()];
+    let mut iterations = 0;
+    for _ in 0..CHUNK.min(n - c * CHUNK) {
+        let u = std::array::from_fn(|_| uniform(&mut rng));
+        if let Some(s) = model.sample(wi, u) {
+            pixels[index_of_dir(&grid, s.wo.to_dir())] += s.weight;
+            iterations += s.iterations as u64;
+        }
+    }
+    (pixels, iterations)
 }
 
 fn uniform(rng: &mut Pcg64Mcg) -> f64 {
@@ -222,7 +245,11 @@ fn relative_l1(a: &LatLongImage, b: &LatLongImage) -> f64 {
 
 /// `sampled_total.exr/png`, `compare.png` (evaluated | sampled | |difference| stacked, one white
 /// point), and `azimuthal.svg` (evaluated and sampled densities in φ).
-fn write_comparison(out: &OutDir, evaluated: &LatLongImage, sampled: &LatLongImage) -> Result<()> {
+fn write_comparison(
+    out: &mut OutDir,
+    evaluated: &LatLongImage,
+    sampled: &LatLongImage,
+) -> Result<()> {
     let mut difference = LatLongImage::zeros(evaluated.grid);
     for ((d, a), b) in difference
         .pixels

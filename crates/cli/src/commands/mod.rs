@@ -1,3 +1,5 @@
+pub mod compare;
+pub mod device;
 pub mod env;
 pub mod fiber_args;
 pub mod furnace;
@@ -6,4 +8,6 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod trace;
 pub mod validate;
+pub mod view;

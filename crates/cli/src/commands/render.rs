@@ -1,21 +1,42 @@
 //! `cuticle render`: the hair renderer of Xu et al. 2011 (crate cuticle-render) on a scene from flags
-//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear) and `render.json` with
+//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear), `coverage.exr` (each
+//! pixel's hair coverage, the mask `cuticle compare` reads) and `render.json` with
 //! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.
 
+use crate::commands::device;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result};
+use cuticle_fiber::ranges::CountRange;
+use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::BenchReport;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use exr::prelude::*;
+use glam::DVec3;
 use serde_json::{Value, json};
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Clone, Debug)]
 pub struct Args {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Output folder.
+    #[arg(long, default_value = "out/render")]
+    out: PathBuf,
+    /// auto (a hardware GPU where one exists, else the CPU), gpu (any adapter, a software one
+    /// included) or cpu.
+    #[arg(long, default_value = "auto")]
+    device: Choice,
+    #[command(flatten)]
+    path: crate::commands::trace::PathArgs,
+}
+
+/// The scene flags `render` and `view` share.
+#[derive(clap::Args, Clone, Debug)]
+pub struct SceneArgs {
     /// A TOML scene file (keys as in SceneSpec); flags override it.
     #[arg(long)]
     scene: Option<PathBuf>,
@@ -25,14 +46,15 @@ pub struct Args {
     /// Strands of a preset groom.
     #[arg(long)]
     strands: Option<usize>,
-    /// `default` (procedural sky) or an .hdr/.exr lat-long map.
+    /// `default` (procedural sky), `constant:R,G,B` (uniform) or an .hdr/.exr lat-long map.
     #[arg(long)]
     env: Option<String>,
     /// Number J of SRBF lights to fit, or a lights.json from `cuticle env fit`.
     #[arg(long)]
     lights: Option<String>,
-    /// srbf (Xu et al. 2011) or brute (exact model, 6 n² directional lights).
-    #[arg(long, value_parser = ["srbf", "brute"])]
+    /// srbf (Xu et al. 2011), brute (exact model, 6 n² directional lights) or path (the path
+    /// tracer, flags --spp, --seed, --max-depth, --model and the fiber flags).
+    #[arg(long, value_parser = ["srbf", "brute", "path"])]
     method: Option<String>,
     /// Segments m of the linear quadrature.
     #[arg(long)]
@@ -68,51 +90,85 @@ pub struct Args {
     /// TRT caustic width w_c, degrees.
     #[arg(long, allow_negative_numbers = true)]
     caustic_width_deg: Option<f64>,
-    /// Output folder.
-    #[arg(long, default_value = "out/render")]
-    out: PathBuf,
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let (spec, lights) = spec_from(&args)?;
+    let (spec, lights) = spec_from(&args.scene)?;
+    let backend = device::choose(args.device, spec.method)?;
+    if spec.method == Method::Path {
+        return crate::commands::trace::run(&args.path, spec, &args.out);
+    }
+    let scene = load_within_memory(spec, lights)?;
+    Renderer::accepts(&scene)?;
+    let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
-    let scene = Scene::load(spec, lights)?;
     eprintln!(
-        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}",
+        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}, on {}",
         scene.groom.strand_count(),
         scene.groom.point_count(),
         scene.lights.len(),
         scene.spec.width,
         scene.spec.height,
-        scene.spec.method
+        scene.spec.method,
+        match &backend {
+            Backend::Cpu => "the CPU".to_string(),
+            Backend::Gpu(d) => format!("{} ({})", d.summary.name, d.summary.kind),
+        }
     );
-    let progress = bar(0, "shade");
-    let report = |done: usize, total: usize| {
-        progress.set_length(total as u64);
-        progress.set_position(done as u64);
+    let (image, visible_points, coverage, visibility, timings, device_json) = match &backend {
+        Backend::Cpu => {
+            let progress = bar(0, "shade");
+            let report = |done: usize, total: usize| {
+                progress.set_length(total as u64);
+                progress.set_position(done as u64);
+            };
+            let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
+            progress.finish_and_clear();
+            let cov = prepared.coverage.covered_fraction();
+            let n = prepared.points.len();
+            (
+                image,
+                n,
+                cov,
+                prepared.coverage,
+                timings,
+                device::cpu_json(),
+            )
+        }
+        Backend::Gpu(d) => {
+            let r = device::render(d, &renderer, &scene)?;
+            (
+                r.image,
+                r.visible_points,
+                r.coverage,
+                r.visibility,
+                r.timings,
+                r.device,
+            )
+        }
     };
-    let (image, prepared, timings) = renderer.render_with_progress(&scene, &report);
-    progress.finish_and_clear();
-    let out = OutDir::create(&args.out)?;
+    check_finite(&image)?;
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &png_bytes(&image, tone)?)?;
     out.write("image.exr", &exr_bytes(&image)?)?;
+    out.write("coverage.exr", &exr_bytes(&coverage_image(&visibility))?)?;
     let record = json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
         "points": scene.groom.point_count(),
         "lights": scene.lights.len(),
         "srbf_fit_relative_l2": scene.fit_error,
-        "visible_points": prepared.points.len(),
-        "coverage": prepared.coverage.covered_fraction(),
+        "visible_points": visible_points,
+        "coverage": coverage,
+        "device": device_json,
         "multiple_scattering": multiple_json(&scene),
         "seconds": seconds_json(&timings),
     });
-    out.write_json("render.json", &record)?;
+    out.finish(record)?;
     println!(
         "{}: {} visible points shaded in {:.2} s; frame {:.2} s (drawing {:.2}, shadows {:.2}, shading {:.2}, resolve {:.2}; tables {:.2}, fit {:.2})",
         args.out.display(),
-        prepared.points.len(),
+        visible_points,
         timings.shading,
         timings.drawing + timings.shadows + timings.shading + timings.resolve,
         timings.drawing,
@@ -131,6 +187,9 @@ pub enum Bench {
     /// The renderer on the paper's workload (default groom, 40 SRBF lights, 720x480, single and
     /// multiple scattering): medians of full frames and of re-renders after an absorption edit.
     Render(BenchArgs),
+    /// The path tracer: BVH build time, ray casting and path tracing rays/s and spp/s
+    /// (default: straight.hair at 360x240 under the procedural sky).
+    Trace(crate::commands::trace::TraceBenchArgs),
 }
 
 #[derive(clap::Args, Clone, Debug)]
@@ -142,22 +201,31 @@ pub struct BenchArgs {
     width: Option<usize>,
     #[arg(long)]
     height: Option<usize>,
-    /// Frames timed for each median.
+    /// Frames timed for each median (1 to 1000).
     #[arg(long, default_value_t = 3)]
     frames: usize,
+    /// auto (a hardware GPU where one exists, else the CPU), gpu or cpu.
+    #[arg(long, default_value = "auto")]
+    device: Choice,
     /// Output folder.
     #[arg(long, default_value = "out/bench-render")]
     out: PathBuf,
 }
 
 pub fn bench(command: Bench) -> Result<()> {
-    let Bench::Render(args) = command;
+    let args = match command {
+        Bench::Render(args) => args,
+        Bench::Trace(args) => return crate::commands::trace::bench(&args),
+    };
     let mut spec = SceneSpec::default();
     args.strands.into_iter().for_each(|v| spec.strands = v);
     args.width.into_iter().for_each(|v| spec.width = v);
     args.height.into_iter().for_each(|v| spec.height = v);
+    FRAMES.check_usize(args.frames)?;
+    let backend = device::choose(args.device, spec.method)?;
+    let scene = load_within_memory(spec, None)?;
+    let out = OutDir::create(&args.out, "bench")?;
     let renderer = Renderer::new();
-    let scene = Scene::load(spec, None)?;
     eprintln!(
         "bench: {} strands, {} SRBF lights, {}x{}, {} frames",
         scene.groom.strand_count(),
@@ -166,11 +234,57 @@ pub fn bench(command: Bench) -> Result<()> {
         scene.spec.height,
         args.frames
     );
+    if let Backend::Gpu(d) = &backend {
+        let report = device::bench(d, &renderer, &scene, args.frames)?;
+        let mut record = device::bench_json(d, &report);
+        record["params"] = serde_json::to_value(&scene.spec)?;
+        record["strands"] = json!(scene.groom.strand_count());
+        record["points"] = json!(scene.groom.point_count());
+        record["lights"] = json!(scene.lights.len());
+        record["seconds"]["tables"] = json!(renderer.table_seconds);
+        record["seconds"]["srbf_fit"] = json!(scene.fit_seconds);
+        out.finish(record)?;
+        device::print_bench(d, &report);
+        return Ok(());
+    }
     let report = cuticle_render::bench::run(&renderer, &scene, args.frames);
-    let out = OutDir::create(&args.out)?;
-    out.write_json("bench.json", &bench_json(&scene, &renderer, &report)?)?;
+    out.finish(bench_json(&scene, &renderer, &report)?)?;
     print_bench(&report);
     Ok(())
+}
+
+/// Frames one benchmark times.
+const FRAMES: CountRange = CountRange {
+    name: "frames",
+    min: 1,
+    max: 1000,
+};
+
+/// The scene, loaded once what it needs in memory is known to fit (checked before the groom
+/// is made, and again before drawing, with the groom's real size).
+fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
+    let threads = rayon::current_num_threads();
+    spec.validate()?;
+    let available = crate::memory::available();
+    spec.memory_need(lights.as_ref().map(Vec::len), threads)
+        .check(available)?;
+    let scene = Scene::load(spec, lights)?;
+    scene.memory_need(threads).check(available)?;
+    Ok(scene)
+}
+
+/// Refuses to write an image holding NaN or infinite pixels (a fault of the renderer: every
+/// input that could cause one is refused before rendering).
+fn check_finite(image: &Image) -> Result<()> {
+    match image.pixels.iter().position(|p| !p.is_finite()) {
+        Some(k) => anyhow::bail!(
+            "the renderer made a non-finite pixel ({}, {}) = {}; nothing was written",
+            k % image.width,
+            k / image.width,
+            image.pixels[k]
+        ),
+        None => Ok(()),
+    }
 }
 
 /// bench.json: the scene's parameters and the median seconds.
@@ -180,6 +294,7 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
         "strands": scene.groom.strand_count(),
         "points": scene.groom.point_count(),
         "lights": scene.lights.len(),
+        "device": device::cpu_json(),
         "frames": report.frames,
         "visible_points": report.visible_points,
         "seconds": {
@@ -215,7 +330,7 @@ fn print_bench(r: &BenchReport) {
 }
 
 /// The scene file (if any) with the flags laid over it, and lights read from a file.
-fn spec_from(args: &Args) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
+pub fn spec_from(args: &SceneArgs) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
     let mut spec = match &args.scene {
         Some(path) => SceneSpec::from_toml_file(path)?,
         None => SceneSpec::default(),
@@ -234,10 +349,10 @@ fn spec_from(args: &Args) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
         spec.env = e.clone();
     }
     if let Some(m) = &args.method {
-        spec.method = if m == "brute" {
-            Method::Brute
-        } else {
-            Method::Srbf
+        spec.method = match m.as_str() {
+            "brute" => Method::Brute,
+            "path" => Method::Path,
+            _ => Method::Srbf,
         };
     }
     spec.multiple = spec.multiple && !args.no_multiple;
@@ -277,8 +392,21 @@ fn parse_rgb(s: &str) -> Result<[f64; 3]> {
     }
 }
 
-/// The `"lights"` array of a lights.json written by `cuticle env fit`.
+/// The largest lights file read (512 lights take under 200 kB).
+const MAX_LIGHTS_FILE: u64 = 4 << 20;
+
+/// The `"lights"` array of a lights.json written by `cuticle env fit`, each light checked.
 fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
+    let size = std::fs::metadata(path)
+        .with_context(|| format!("cannot read {}", path.display()))?
+        .len();
+    if size > MAX_LIGHTS_FILE {
+        anyhow::bail!(
+            "{} is {size} bytes, more than a lights file of {} lights takes",
+            path.display(),
+            cuticle_light::MAX_LIGHTS
+        );
+    }
     let text =
         std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
     let value: Value =
@@ -287,7 +415,10 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
         .get("lights")
         .cloned()
         .with_context(|| format!("{} has no \"lights\" array", path.display()))?;
-    Ok(serde_json::from_value(lights)?)
+    let lights: Vec<SrbfLight> = serde_json::from_value(lights)
+        .with_context(|| format!("{}: \"lights\" is not a list of lights", path.display()))?;
+    cuticle_light::validate_lights(&lights).with_context(|| path.display().to_string())?;
+    Ok(lights)
 }
 
 /// Whether and how multiple scattering was rendered.
@@ -297,6 +428,7 @@ fn multiple_json(scene: &Scene) -> Value {
         Method::Brute => {
             "exact azimuthal functions and Marschner lobes per directional light, integrated numerically"
         }
+        Method::Path => "every path, by path tracing",
     };
     json!({
         "enabled": scene.spec.multiple,
@@ -320,6 +452,19 @@ pub fn seconds_json(t: &Timings) -> Value {
     })
 }
 
+/// Each pixel's hair coverage (the fraction of its subsamples a strand covers) in all three
+/// channels: the mask `cuticle compare` averages over.
+fn coverage_image(coverage: &cuticle_render::frame::raster::Coverage) -> Image {
+    let (width, height) = (coverage.width, coverage.height);
+    Image {
+        width,
+        height,
+        pixels: (0..width * height)
+            .map(|k| DVec3::splat(coverage.pixel_fraction(k % width, k / width)))
+            .collect(),
+    }
+}
+
 /// Tone-mapped 8-bit sRGB PNG with the environment's exposure.
 pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
     let mut img = image::RgbImage::new(image.width as u32, image.height as u32);
@@ -337,7 +482,7 @@ pub fn png_bytes(image: &Image, tone: ToneMap) -> Result<Vec<u8>> {
 }
 
 /// Linear 32-bit float RGB OpenEXR.
-fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
+pub fn exr_bytes(image: &Image) -> Result<Vec<u8>> {
     let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
         let p = image.pixels[y * image.width + x];
         (p.x as f32, p.y as f32, p.z as f32)

@@ -7,7 +7,7 @@ use crate::progress::bar;
 use anyhow::Result;
 use cuticle_fiber::LatLongImage;
 use cuticle_sim::{LOBE_NAMES, SimParams, SimResult, sim_json, simulate};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -80,24 +80,34 @@ pub fn named_images(result: &SimResult) -> Vec<(&'static str, LatLongImage)> {
     images
 }
 
-/// Writes a result's lobe images (EXR, and PNG when `png`) and `azimuthal.csv` into `out`.
-pub fn write_result_images(out: &OutDir, result: &SimResult, png: bool) -> Result<()> {
+/// Writes a result's whole set into `dir`: lobe images (EXR, and PNG when `png`),
+/// `azimuthal.csv`, and `sim.json` last, swapped in at once (what `sim` writes, and each
+/// configuration of a sweep).
+pub fn write_result(dir: &Path, result: &SimResult, png: bool) -> Result<()> {
+    let mut out = OutDir::create(dir, "sim")?;
+    write_into(&mut out, result, png)?;
+    out.finish(sim_json(result))?;
+    Ok(())
+}
+
+fn write_into(out: &mut OutDir, result: &SimResult, png: bool) -> Result<()> {
     let images = named_images(result);
     let refs: Vec<(&str, &LatLongImage)> = images.iter().map(|(n, i)| (*n, i)).collect();
-    write_images(out, &refs, png)
+    write_images(out, &refs, png)?;
+    Ok(())
 }
 
 pub fn run(args: Args) -> Result<()> {
     let params = args.params();
     params.validate()?;
-    let out = OutDir::create(&args.out)?;
+    let mut out = OutDir::create(&args.out, "sim")?;
     let progress = bar(params.rays, "sim");
     let result = simulate(&params, &|done, _| {
         progress.set_position(done.max(progress.position()))
     })?;
     progress.finish_and_clear();
-    write_result_images(&out, &result, true)?;
-    out.write_json("sim.json", &sim_json(&result))?;
+    write_into(&mut out, &result, true)?;
+    out.finish(sim_json(&result))?;
     print_summary(&result, &args.out);
     Ok(())
 }

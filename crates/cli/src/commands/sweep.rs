@@ -2,16 +2,18 @@
 //! suite, the `small` subset, or a JSON file), resumable and shardable.
 //!
 //! Each configuration goes to `OUT/<name>/` (e.g. `ti0.75_a-2_b0.04_mu0.25_eta1.55`) with
-//! `R.exr` … `rest.exr`, `total.exr`, `azimuthal.csv` (and PNGs with `--png`), and is complete
-//! exactly when its `sim.json` exists: it is written last, every file atomically. A resumed run
-//! skips complete configurations and redoes any that a killed run left without `sim.json`.
+//! `R.exr` … `rest.exr`, `total.exr`, `azimuthal.csv` (and PNGs with `--png`) and `sim.json`:
+//! the set `cuticle sim` writes, staged beside the folder and swapped in whole, so a
+//! configuration is complete exactly when its `sim.json` exists. A resumed run skips complete
+//! configurations, redoes any that a killed run left without `sim.json`, and refuses a folder
+//! whose configurations were made with other `--rays`, `--seed` or `--png`.
 //! `--shard K/N` runs the configurations whose index i (in the grid's order) has
 //! i mod N = K − 1, so the N jobs of an array share one output folder without overlap.
 
-use crate::commands::sim::write_result_images;
-use crate::output::OutDir;
+use crate::commands::sim::write_result;
+use crate::output::write_json_atomic;
 use crate::progress::bar;
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use cuticle_fiber::LatLongGrid;
 use cuticle_sim::{Shard, Sweep, SweepConfig, SweepSummary, grid};
 use serde_json::json;
@@ -43,11 +45,22 @@ pub struct Args {
     png: bool,
 }
 
+/// The largest grid file read: about 100,000 configurations.
+const MAX_GRID_FILE: u64 = 16 << 20;
+
 fn configs(grid_arg: &str) -> Result<Vec<SweepConfig>> {
     match grid_arg {
         "paper" => Ok(grid::paper()),
         "small" => Ok(grid::small()),
         file => {
+            let size = std::fs::metadata(file)
+                .with_context(|| format!("cannot read grid file {file}"))?
+                .len();
+            if size > MAX_GRID_FILE {
+                bail!(
+                    "grid file {file} is {size} bytes; a grid file holds at most {MAX_GRID_FILE}"
+                );
+            }
             let text = std::fs::read_to_string(file)
                 .with_context(|| format!("cannot read grid file {file}"))?;
             Ok(grid::from_json(&text)?)
@@ -57,7 +70,6 @@ fn configs(grid_arg: &str) -> Result<Vec<SweepConfig>> {
 
 pub fn run(args: Args) -> Result<()> {
     let all = configs(&args.grid)?;
-    let out = OutDir::create(&args.out)?;
     let sweep = Sweep::new(
         &all,
         args.shard,
@@ -66,13 +78,16 @@ pub fn run(args: Args) -> Result<()> {
         args.seed,
         LatLongGrid::default(),
     )?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create output folder {}", args.out.display()))?;
+    sweep.check_settings()?;
+    check_png(&sweep, args.png)?;
     let progress = bar(sweep.configs.len() as u64, "sweep");
     progress.set_position(sweep.complete_count() as u64);
     progress.reset_eta();
     let png = args.png;
     let write = move |dir: &Path, r: &cuticle_sim::SimResult| {
-        let dir_out = OutDir::create(dir).map_err(|e| format!("{e:#}"))?;
-        write_result_images(&dir_out, r, png).map_err(|e| format!("{e:#}"))
+        write_result(dir, r, png).map_err(|e| format!("{e:#}"))
     };
     let ran = std::cell::Cell::new(0usize);
     let stop = || args.limit.is_some_and(|n| ran.get() >= n);
@@ -82,7 +97,10 @@ pub fn run(args: Args) -> Result<()> {
         progress.set_message(c.dir_name());
     })?;
     progress.finish_and_clear();
-    out.write_json(&record_name(args.shard), &record(&args, &summary))?;
+    write_json_atomic(
+        &args.out.join(record_name(args.shard)),
+        &record(&args, &summary),
+    )?;
     println!(
         "{} configurations in shard {}/{}: {} already complete, {} simulated ({:.1} s, {:.1} M paths/s), {} left -> {}",
         summary.total,
@@ -95,6 +113,21 @@ pub fn run(args: Args) -> Result<()> {
         summary.remaining,
         args.out.display()
     );
+    Ok(())
+}
+
+/// Refuses to resume into complete configurations written with the other `--png` setting.
+fn check_png(sweep: &Sweep, png: bool) -> Result<()> {
+    for (_, config) in &sweep.configs {
+        let dir = sweep.dir(config);
+        if sweep.is_complete(config) && dir.join("total.png").is_file() != png {
+            bail!(
+                "{} was made {} --png; resume with the settings it was made with, or write to another folder",
+                dir.display(),
+                if png { "without" } else { "with" }
+            );
+        }
+    }
     Ok(())
 }
 

@@ -10,11 +10,13 @@ use crate::output::OutDir;
 use crate::progress::bar;
 use crate::svg_plot::{Series, line_plot};
 use anyhow::{Context, Result, bail};
+use cuticle_fiber::ranges;
 use cuticle_fiber::{FiberAngles, LatLongImage, Lobe};
 use cuticle_validate::compare::{figures_of, with_noise};
 use cuticle_validate::noise::{mean_of, seed_to_seed_l1};
 use cuticle_validate::sheet::{abs_difference, stack, total};
 use cuticle_validate::summary::mean_median;
+use cuticle_validate::sweep_dir::FILES;
 use cuticle_validate::{ModelKind, Row, SimConfig, csv, list_configs, markdown, model_images};
 use serde_json::json;
 use std::path::PathBuf;
@@ -52,6 +54,9 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     let models = ModelKind::parse_list(&args.models)?;
+    ranges::SAMPLES
+        .named("sheet_samples")
+        .check(args.sheet_samples)?;
     let mut configs = list_configs(&args.sim)?;
     if let Some(f) = &args.filter {
         configs.retain(|c| c.name.contains(f.as_str()));
@@ -67,7 +72,7 @@ pub fn run(args: Args) -> Result<()> {
         .as_deref()
         .map(|dir| noise_twins(&configs, dir))
         .transpose()?;
-    let out = OutDir::create(&args.out)?;
+    let mut out = OutDir::create(&args.out, "validate")?;
     let sheet_set = sheet_indices(configs.len(), args.sheets);
     let start = Instant::now();
     let progress = bar(configs.len() as u64, "validate");
@@ -97,7 +102,7 @@ pub fn run(args: Args) -> Result<()> {
             rendered.push((kind, images));
         }
         if sheet_set.contains(&i) {
-            write_sheet(&out, config, &sim, &rendered, &args)?;
+            write_sheet(&mut out, config, &sim, &rendered, &args)?;
         }
         progress.inc(1);
     }
@@ -119,7 +124,7 @@ pub fn run(args: Args) -> Result<()> {
     );
     out.write("validation.md", markdown(&rows, &header).as_bytes())?;
     out.write("error_vs_theta_i.svg", error_plot(&rows).as_bytes())?;
-    out.write_json("validate.json", &record(&args, &configs, &rows, seconds))?;
+    out.finish(record(&args, &configs, &rows, seconds))?;
     print_summary(&rows, configs.len(), seconds, &args);
     Ok(())
 }
@@ -158,19 +163,19 @@ fn noise_twins(configs: &[SimConfig], dir: &std::path::Path) -> Result<Vec<SimCo
         .collect()
 }
 
-/// The simulation's five lobe images.
+/// The simulation's five lobe images, read with the rest of the configuration's set (`total`,
+/// `azimuthal.csv`) and checked against each other and `sim.json` before anything relies on
+/// them.
 fn read_lobes(config: &SimConfig) -> Result<[LatLongImage; 5]> {
-    let read = |l: Lobe| {
-        let path = config.dir.join(format!("{}.exr", l.name()));
-        read_exr(&path).with_context(|| format!("configuration {}", config.name))
-    };
-    Ok([
-        read(Lobe::R)?,
-        read(Lobe::TT)?,
-        read(Lobe::TRT)?,
-        read(Lobe::TRRT)?,
-        read(Lobe::Rest)?,
-    ])
+    let read = |name: &str| read_exr(&config.dir.join(format!("{name}.exr")));
+    let [r, tt, trt, trrt, rest, total] = FILES.map(read);
+    let images = [r?, tt?, trt?, trrt?, rest?, total?];
+    let csv_path = config.dir.join("azimuthal.csv");
+    let csv = std::fs::read_to_string(&csv_path)
+        .with_context(|| format!("cannot read {}", csv_path.display()))?;
+    config.check_set(&images, &csv)?;
+    let [r, tt, trt, trrt, rest, _] = images;
+    Ok([r, tt, trt, trrt, rest])
 }
 
 /// `n` indices spread evenly over `len`.
@@ -182,7 +187,7 @@ fn sheet_indices(len: usize, n: usize) -> Vec<usize> {
 /// `sheets/<config>.png`: simulation | sampled | evaluated | |difference| | d'Eon 2011 (totals,
 /// top to bottom, one white point taken from the simulation), as d'Eon et al. 2014 Figure 7.
 fn write_sheet(
-    out: &OutDir,
+    out: &mut OutDir,
     config: &SimConfig,
     sim: &[LatLongImage; 5],
     rendered: &[(ModelKind, [LatLongImage; 5])],
@@ -211,9 +216,8 @@ fn write_sheet(
     let mut panels = vec![&sim_total, &sampled, &evaluated, &difference];
     let deon = find(ModelKind::DEon2011);
     panels.extend(deon.as_ref());
-    let sheets = OutDir::create(&out.path("sheets"))?;
     let png = png_bytes_with_white(&stack(&panels), white_point(&sim_total))?;
-    sheets.write(&format!("{}.png", config.name), &png)?;
+    out.write(&format!("sheets/{}.png", config.name), &png)?;
     Ok(())
 }
 

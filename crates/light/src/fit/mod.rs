@@ -137,9 +137,9 @@ pub fn fit_srbf_with_progress(
         fit_height
     };
     let bandwidth_range = [
-        options
-            .min_bandwidth
-            .unwrap_or(0.6 * std::f64::consts::PI / finest as f64),
+        options.min_bandwidth.unwrap_or(
+            (0.6 * std::f64::consts::PI / finest as f64).max(crate::srbf::MIN_BANDWIDTH),
+        ),
         options.max_bandwidth,
     ];
     let kappa_range = (
@@ -253,21 +253,26 @@ fn fit_grid(map: &EnvMap, width: usize) -> (usize, usize) {
     (width, height.clamp(1, map.height()))
 }
 
+/// Most Levenberg–Marquardt iterations a fit may be asked for (it converges in tens).
+pub const MAX_ITERATIONS: usize = 10_000;
+
 fn validate(options: &FitOptions) -> Result<(), LightError> {
     let bad = |message: &str| Err(LightError::FitOptions(message.to_string()));
-    if options.lights == 0 || options.lights > 512 {
-        return bad("the number of lights must be between 1 and 512");
+    if options.lights == 0 || options.lights > crate::MAX_LIGHTS {
+        return Err(LightError::LightCount(options.lights));
+    }
+    if options.max_iterations > MAX_ITERATIONS {
+        return bad("at most 10000 Levenberg–Marquardt iterations");
     }
     if options.fit_width < 8 {
         return bad("the fit grid must be at least 8 pixels wide");
     }
-    let min_ok = options
-        .min_bandwidth
-        .is_none_or(|b| b.is_finite() && b > 0.0);
-    let max_ok = options.max_bandwidth.is_finite()
+    let range = crate::srbf::MIN_BANDWIDTH..=crate::srbf::MAX_BANDWIDTH;
+    let min_ok = options.min_bandwidth.is_none_or(|b| range.contains(&b));
+    let max_ok = range.contains(&options.max_bandwidth)
         && options.max_bandwidth >= options.min_bandwidth.unwrap_or(0.0);
-    if !min_ok || !max_ok || options.max_bandwidth <= 0.0 {
-        return bad("bandwidths must be positive, finite, and min ≤ max");
+    if !min_ok || !max_ok {
+        return bad("bandwidths must lie in [1e-4, 4], min ≤ max");
     }
     if options.tolerance.is_nan() || options.tolerance < 0.0 {
         return bad("the tolerance must be ≥ 0");

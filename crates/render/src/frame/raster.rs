@@ -57,6 +57,15 @@ impl Coverage {
             .collect()
     }
 
+    /// Fraction of pixel (x, y)'s subsamples covered by hair.
+    pub fn pixel_fraction(&self, x: usize, y: usize) -> f64 {
+        let covered = self
+            .pixel_samples(x, y)
+            .filter(|&s| self.segment[s] != EMPTY)
+            .count();
+        covered as f64 / (self.ss * self.ss).max(1) as f64
+    }
+
     /// Fraction of subsamples covered by hair.
     pub fn covered_fraction(&self) -> f64 {
         let n = self.segment.iter().filter(|&&s| s != EMPTY).count();

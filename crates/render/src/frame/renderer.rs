@@ -29,6 +29,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// A linear RGB image, row-major, top row first.
@@ -130,8 +131,25 @@ impl Renderer {
             .get_or_build((key, d_b), || BackScatteringTables::build(fiber, d_b))
     }
 
+    /// Whether this renderer renders `scene`'s method: [`Method::Path`] belongs to the path
+    /// tracer (crate cuticle-trace).
+    pub fn accepts(scene: &Scene) -> Result<(), crate::SceneError> {
+        match scene.spec.method {
+            Method::Srbf | Method::Brute => Ok(()),
+            Method::Path => Err(crate::SceneError::Invalid(
+                "method path is rendered by the path tracer (crate cuticle-trace), not the SRBF renderer".into(),
+            )),
+        }
+    }
+
     /// Stages 2–3.
+    ///
+    /// # Panics
+    /// For [`Method::Path`] (see [`Renderer::accepts`]).
     pub fn prepare(&self, scene: &Scene, timings: &mut Timings) -> Prepared {
+        if let Err(e) = Self::accepts(scene) {
+            panic!("{e}");
+        }
         let spec = &scene.spec;
         let start = Instant::now();
         let view = scene.camera.view(spec.width, spec.height);
@@ -148,7 +166,7 @@ impl Renderer {
         let start = Instant::now();
         let lights = match spec.method {
             Method::Srbf => srbf_lights(scene),
-            Method::Brute => brute::directional_lights(scene, spec.brute_grid)
+            Method::Brute | Method::Path => brute::directional_lights(scene, spec.brute_grid)
                 .into_iter()
                 .map(|Directional { direction, power }| WorldLight {
                     direction,
@@ -183,6 +201,20 @@ impl Renderer {
         prepared: &Prepared,
         progress: Progress,
     ) -> Vec<DVec3> {
+        let never = AtomicBool::new(false);
+        self.shade_cancellable(scene, prepared, progress, &never)
+            .unwrap_or_default()
+    }
+
+    /// [`Self::shade_with_progress`] that gives up once `cancel` is set (the points left are
+    /// skipped) and then returns `None`: a live window drops a frame made stale by a newer edit.
+    pub fn shade_cancellable(
+        &self,
+        scene: &Scene,
+        prepared: &Prepared,
+        progress: Progress,
+        cancel: &AtomicBool,
+    ) -> Option<Vec<DVec3>> {
         let counter = Counter::new(prepared.points.len(), progress);
         let fibers: Vec<MarschnerParams> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
@@ -192,7 +224,9 @@ impl Renderer {
         let back = multiple.then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
         let (lobes, exact_half) = match scene.spec.method {
             Method::Srbf => (Some(self.lobe_table(&hair.fiber(None))), None),
-            Method::Brute => (None, multiple.then(|| ExactHalfCircle::build(hair.eta))),
+            Method::Brute | Method::Path => {
+                (None, multiple.then(|| ExactHalfCircle::build(hair.eta)))
+            }
         };
         let shader = match (&lobes, &exact_half) {
             (Some(lobes), _) => FrameShader::Srbf(SrbfFrame {
@@ -231,13 +265,16 @@ impl Renderer {
             }),
         };
         let nl = prepared.lights.len();
-        prepared
+        let colours = prepared
             .points
             .par_iter()
             .enumerate()
             .map_init(
                 || (Vec::new(), Vec::new()),
                 |scratch, (k, &p)| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return DVec3::ZERO;
+                    }
                     counter.tick();
                     let p = p as usize;
                     let point = ShadingPoint {
@@ -253,7 +290,8 @@ impl Renderer {
                     }
                 },
             )
-            .collect()
+            .collect::<Vec<_>>();
+        (!cancel.load(Ordering::Relaxed)).then_some(colours)
     }
 
     /// Stage 5: averages each pixel's subsamples, hair shaded by interpolating its segment's

@@ -1,6 +1,8 @@
 //! A pinhole camera in the groom's space (+z up for procedural grooms), and its default framing
 //! of a groom: a three-quarter view from behind and above, where hair covers the head.
 
+use crate::scene::{SceneError, exactly_three};
+use cuticle_fiber::ranges::{End, Range};
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -8,8 +10,11 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Camera {
+    #[serde(deserialize_with = "exactly_three")]
     pub eye: [f64; 3],
+    #[serde(deserialize_with = "exactly_three")]
     pub target: [f64; 3],
+    #[serde(deserialize_with = "exactly_three")]
     pub up: [f64; 3],
     /// Vertical field of view, degrees.
     pub fov_deg: f64,
@@ -38,6 +43,25 @@ pub struct Projected {
 /// Nearest depth drawn.
 pub const NEAR: f64 = 1e-3;
 
+/// The vertical field of view, degrees: a pinhole sees less than a half space.
+pub const FOV_DEG: Range = Range {
+    name: "camera.fov_deg",
+    min: End::Closed(0.1),
+    max: End::Closed(170.0),
+    unit: " degrees",
+};
+
+/// Each coordinate of the camera's eye, target and up, in the groom's units (centimetres).
+pub const COORDINATE: Range = Range {
+    name: "camera coordinate",
+    min: End::Closed(-1e6),
+    max: End::Closed(1e6),
+    unit: "",
+};
+
+/// Least |eye − target| and |up × forward| / |up| a view needs to have a direction and an up.
+const MIN_SEPARATION: f64 = 1e-6;
+
 impl Camera {
     /// A view of the box [lo, hi] from the back-left, slightly above, filling the frame.
     pub fn framing(lo: Vec3, hi: Vec3, up_z: bool) -> Self {
@@ -58,6 +82,35 @@ impl Camera {
             up: up.to_array(),
             fov_deg,
         }
+    }
+
+    /// Checks the camera describes a view: finite coordinates, a field of view in
+    /// [`FOV_DEG`], an eye apart from its target, and an up that is neither zero nor along the
+    /// view direction.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        for (key, v) in [("eye", self.eye), ("target", self.target), ("up", self.up)] {
+            COORDINATE.named(key_name(key)).check_all(&v)?;
+        }
+        FOV_DEG.check(self.fov_deg)?;
+        let (eye, target, up) = (
+            DVec3::from_array(self.eye),
+            DVec3::from_array(self.target),
+            DVec3::from_array(self.up),
+        );
+        let forward = target - eye;
+        if forward.length() <= MIN_SEPARATION {
+            return Err(SceneError::Invalid(format!(
+                "camera.eye {:?} and camera.target {:?} must differ: the camera looks nowhere",
+                self.eye, self.target
+            )));
+        }
+        if forward.normalize().cross(up).length() <= MIN_SEPARATION * up.length().max(1e-300) {
+            return Err(SceneError::Invalid(format!(
+                "camera.up {:?} must be non-zero and not along the view direction",
+                self.up
+            )));
+        }
+        Ok(())
     }
 
     /// The view for an image of `width × height` pixels.
@@ -114,6 +167,15 @@ impl View {
     }
 }
 
+/// The scene key of one of the camera's vectors.
+fn key_name(key: &str) -> &'static str {
+    match key {
+        "eye" => "camera.eye",
+        "target" => "camera.target",
+        _ => "camera.up",
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -129,5 +191,31 @@ mod tests {
         let q = view.project(p).unwrap();
         let ray = view.ray(q.x as f64, q.y as f64);
         assert!((ray - (p - view.eye).normalize()).length() < 1e-5);
+    }
+
+    /// Every camera that gives no view is refused, naming the key at fault.
+    #[test]
+    fn degenerate_cameras_are_refused() {
+        let good = Camera::framing(Vec3::splat(-10.0), Vec3::splat(10.0), true);
+        assert!(good.validate().is_ok());
+        let cases: [(&str, fn(&mut Camera)); 9] = [
+            ("camera.fov_deg", |c| c.fov_deg = f64::NAN),
+            ("camera.fov_deg", |c| c.fov_deg = f64::INFINITY),
+            ("camera.fov_deg", |c| c.fov_deg = 0.0),
+            ("camera.fov_deg", |c| c.fov_deg = 180.0),
+            ("camera.fov_deg", |c| c.fov_deg = -35.0),
+            ("camera.eye", |c| c.eye[0] = f64::NAN),
+            ("must differ", |c| c.eye = c.target),
+            ("camera.up", |c| c.up = [0.0; 3]),
+            ("camera.up", |c| {
+                c.up = (DVec3::from_array(c.target) - DVec3::from_array(c.eye)).to_array()
+            }),
+        ];
+        for (needle, spoil) in cases {
+            let mut c = good;
+            spoil(&mut c);
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains(needle), "{needle}: {e}");
+        }
     }
 }

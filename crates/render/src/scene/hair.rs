@@ -10,6 +10,7 @@ use cuticle_fiber::absorption::mu_a_from_melanin;
 use cuticle_fiber::marschner2003::{
     DEFAULT_ALPHA_R_DEG, DEFAULT_BETA_R_DEG, DEFAULT_CAUSTIC_WIDTH_DEG, MarschnerParams,
 };
+use cuticle_fiber::ranges::{self, End, Range, RangeError};
 use cuticle_groom::{Absorption, Appearance};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -26,8 +27,10 @@ pub struct HairParams {
     /// Longitudinal width β_R, degrees (β_TT = β_R/2, β_TRT = 2β_R).
     pub beta_r_deg: f64,
     /// Absorption σ_a per unit radius for every strand; `None` takes each strand's own.
+    #[serde(deserialize_with = "crate::scene::maybe_three")]
     pub mu_a: Option<[f64; 3]>,
     /// σ_a of strands whose appearance carries none.
+    #[serde(deserialize_with = "crate::scene::exactly_three")]
     pub default_mu_a: [f64; 3],
     /// Eccentricity a (1 for a circular fiber; Xu et al. 2011 eq. 24).
     pub eccentricity: f64,
@@ -56,80 +59,90 @@ impl Default for HairParams {
     }
 }
 
-/// Why a parameter set cannot be rendered.
-#[derive(Clone, Debug, thiserror::Error, PartialEq)]
-#[error("hair parameter {name} = {value} is outside {range}")]
-pub struct HairParamError {
-    pub name: &'static str,
-    pub value: f64,
-    pub range: &'static str,
+/// The values a hair parameter may take: (min, max], or [min, max] when `min_closed`. The
+/// one statement of each range, which validation checks and the window's sliders span.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamRange {
+    pub min: f64,
+    pub max: f64,
+    pub min_closed: bool,
 }
 
-impl HairParams {
-    /// Checks every field against the ranges the model and tables cover.
-    pub fn validate(&self) -> Result<(), HairParamError> {
-        let mu = self.mu_a.unwrap_or(self.default_mu_a);
-        let checks = [
-            (
-                "eta",
-                self.eta,
-                self.eta > 1.0 && self.eta <= 10.0,
-                "(1, 10]",
-            ),
-            (
-                "alpha_r_deg",
-                self.alpha_r_deg,
-                self.alpha_r_deg.abs() <= 20.0,
-                "[-20, 20]",
-            ),
-            (
-                "beta_r_deg",
-                self.beta_r_deg,
-                self.beta_r_deg > 0.0 && self.beta_r_deg <= 45.0,
-                "(0, 45]",
-            ),
-            (
-                "mu_a",
-                mu[0].min(mu[1]).min(mu[2]),
-                mu.iter().all(|c| (0.0..=1000.0).contains(c)),
-                "[0, 1000]",
-            ),
-            (
-                "eccentricity",
-                self.eccentricity,
-                (0.5..=2.0).contains(&self.eccentricity),
-                "[0.5, 2]",
-            ),
-            (
-                "caustic_width_deg",
-                self.caustic_width_deg,
-                self.caustic_width_deg > 0.0 && self.caustic_width_deg <= 90.0,
-                "(0, 90]",
-            ),
-            (
-                "caustic_fade",
-                self.caustic_fade,
-                self.caustic_fade > 0.0 && self.caustic_fade <= 2.0,
-                "(0, 2]",
-            ),
-            ("d_b", self.d_b, (0.0..=1.0).contains(&self.d_b), "[0, 1]"),
-        ];
-        match checks.into_iter().find(|c| !(c.1.is_finite() && c.2)) {
-            Some((name, value, _, range)) => Err(HairParamError { name, value, range }),
-            None => Ok(()),
+impl ParamRange {
+    const fn closed(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            max,
+            min_closed: true,
         }
+    }
+
+    const fn open_below(min: f64, max: f64) -> Self {
+        Self {
+            min,
+            max,
+            min_closed: false,
+        }
+    }
+
+    /// Whether `value` is finite and inside.
+    pub fn contains(&self, value: f64) -> bool {
+        value.is_finite()
+            && value <= self.max
+            && (value > self.min || (self.min_closed && value == self.min))
+    }
+}
+
+impl std::fmt::Display for ParamRange {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let open = if self.min_closed { '[' } else { '(' };
+        write!(f, "{open}{}, {}]", self.min, self.max)
+    }
+}
+
+/// The window's sliders span these; each is the range [`HairParams::validate`] checks
+/// ([`cuticle_fiber::ranges`]), written in this form (open ends taken just inside).
+impl HairParams {
+    pub const ETA: ParamRange = ParamRange::open_below(1.0, 10.0);
+    pub const ALPHA_R_DEG: ParamRange = ParamRange::closed(-20.0, 20.0);
+    pub const BETA_R_DEG: ParamRange = ParamRange::closed(0.004, 60.0);
+    /// Each channel of σ_a (per unit radius).
+    pub const MU_A: ParamRange = ParamRange::closed(0.0, 1000.0);
+    pub const ECCENTRICITY: ParamRange = ParamRange::closed(0.70711, 1.41421);
+    pub const CAUSTIC_WIDTH_DEG: ParamRange = ParamRange::closed(0.01, 90.0);
+    pub const CAUSTIC_FADE: ParamRange = ParamRange::open_below(0.0, 2.0);
+    pub const D_B: ParamRange = ParamRange::closed(0.0, 1.0);
+}
+
+/// d_b, the weight of local backward multiple scattering (Xu et al. 2011 eq. 4).
+pub const D_B: Range = Range {
+    name: "d_b",
+    min: End::Closed(0.0),
+    max: End::Closed(1.0),
+    unit: "",
+};
+
+impl HairParams {
+    /// Checks every field against the ranges the model and tables cover: the fiber's through
+    /// [`MarschnerParams::validate`], the one check every consumer of these parameters shares
+    /// (the SRBF path, the brute force and the exact model), and `d_b`. Each fault names its
+    /// scene key (`hair.` keys, flags of the same name) and value.
+    pub fn validate(&self) -> Result<(), RangeError> {
+        if let Some(mu) = self.mu_a {
+            ranges::MU_A.check_all(&mu)?;
+        }
+        ranges::MU_A
+            .named("default_mu_a")
+            .check_all(&self.default_mu_a)?;
+        self.fiber(None).validate()?;
+        D_B.check(self.d_b)?;
+        Ok(())
     }
 
     /// The shading parameters of a strand with this appearance: the exact model's parameters,
     /// which both the circular-Gaussian path and the brute-force reference read.
     pub fn fiber(&self, appearance: Option<&Appearance>) -> MarschnerParams {
-        let own = appearance.and_then(|a| a.absorption).map(|a| match a {
-            Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
-            Absorption::Melanin {
-                eumelanin,
-                pheomelanin,
-            } => mu_a_from_melanin(eumelanin as f64, pheomelanin as f64),
-        });
+        let own = appearance.and_then(|a| a.absorption).map(sigma_a_of);
         let mu_a = match self.mu_a {
             Some(m) => DVec3::from_array(m),
             None => own.unwrap_or(DVec3::from_array(self.default_mu_a)),
@@ -144,6 +157,18 @@ impl HairParams {
             caustic_fade: self.caustic_fade,
             ..MarschnerParams::default()
         }
+    }
+}
+
+/// σ_a per unit radius of a strand's absorption: given, or from melanin through the fiber
+/// crate's mapping.
+pub fn sigma_a_of(absorption: Absorption) -> DVec3 {
+    match absorption {
+        Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
+        Absorption::Melanin {
+            eumelanin,
+            pheomelanin,
+        } => mu_a_from_melanin(eumelanin as f64, pheomelanin as f64),
     }
 }
 

@@ -6,16 +6,18 @@
 
 pub mod camera;
 pub mod hair;
+pub mod memory;
 pub mod resample;
 
 use crate::frame::shadow::ShadowOptions;
 use crate::scene::camera::Camera;
 use crate::scene::hair::HairParams;
+use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
-use cuticle_groom::procedural::{GroomParams, Preset, generate};
-use cuticle_light::{EnvMap, FitOptions, SrbfLight, fit_srbf, load_or_default};
+use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
+use cuticle_light::{EnvMap, FitOptions, MAX_LIGHTS, SrbfLight, fit_srbf, load_or_default};
 use glam::{DVec3, Vec3};
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -27,6 +29,9 @@ pub enum Method {
     Srbf,
     /// The exact Marschner 2003 model against the environment as directional lights.
     Brute,
+    /// The path tracer (crate cuticle-trace, `cuticle render --method path`); the SRBF
+    /// [`crate::Renderer`] does not render it ([`crate::Renderer::accepts`]).
+    Path,
 }
 
 /// Everything a render needs, as a user writes it (TOML keys = these field names).
@@ -37,7 +42,11 @@ pub struct SceneSpec {
     pub groom: String,
     /// Strands of a preset groom.
     pub strands: usize,
-    /// `default` (the procedural sky) or an .hdr/.exr lat-long map.
+    /// A per-strand absorption file laid over the groom's own (the JSON sidecar
+    /// `cuticle view` saves with a painted groom: [`cuticle_groom::strand_absorption`]).
+    pub strand_absorption: Option<String>,
+    /// `default` (the procedural sky), `constant:R,G,B` (or `constant:V`, a uniform
+    /// environment for tests) or an .hdr/.exr lat-long map.
     pub env: String,
     /// Rotation of the environment about the up axis, degrees.
     pub env_rotate_deg: f64,
@@ -65,6 +74,7 @@ impl Default for SceneSpec {
         Self {
             groom: "straight".into(),
             strands: Preset::DEFAULT_STRANDS,
+            strand_absorption: None,
             env: "default".into(),
             env_rotate_deg: 0.0,
             lights: 40,
@@ -88,21 +98,106 @@ pub enum SceneError {
     #[error("cannot read scene file {path}: {source}")]
     Read {
         path: PathBuf,
+        #[source]
         source: std::io::Error,
     },
-    #[error("scene file {path}: {source}")]
+    /// One line: where in the file, and what is wrong there.
+    #[error("scene file {path}{at}: {message}")]
     Toml {
         path: PathBuf,
-        source: toml::de::Error,
+        at: String,
+        message: String,
     },
     #[error("groom: {0}")]
     Groom(String),
     #[error("environment: {0}")]
     Light(#[from] cuticle_light::LightError),
-    #[error(transparent)]
-    Hair(#[from] crate::scene::hair::HairParamError),
+    #[error("hair parameter {0}")]
+    Hair(RangeError),
+    #[error("scene {0}")]
+    Range(#[from] RangeError),
     #[error("{0}")]
     Invalid(String),
+    #[error(transparent)]
+    Memory(#[from] memory::MemoryError),
+}
+
+/// Image width and height, pixels.
+pub const SIZE: CountRange = CountRange {
+    name: "width/height",
+    min: 1,
+    max: 16384,
+};
+/// Subsamples per pixel along each axis.
+pub const SUPERSAMPLING: CountRange = CountRange {
+    name: "supersampling",
+    min: 1,
+    max: 8,
+};
+/// Segments m of the linear quadrature (Xu et al. 2011 §4.2.2).
+pub const QUADRATURE: CountRange = CountRange {
+    name: "quadrature",
+    min: 2,
+    max: crate::srbf::quadrature::MAX_SEGMENTS as u64,
+};
+/// n of the brute force's 6 n² directional lights.
+pub const BRUTE_GRID: CountRange = CountRange {
+    name: "brute_grid",
+    min: 1,
+    max: 64,
+};
+/// Strands of a preset groom (the groom crate makes empty ones too; a scene renders hair).
+pub const STRANDS: CountRange = CountRange {
+    name: "strands",
+    min: 1,
+    max: MAX_STRANDS as u64,
+};
+/// Number J of SRBF lights fitted to the map (or read from a lights file).
+pub const LIGHTS: CountRange = CountRange {
+    name: "lights",
+    min: 1,
+    max: MAX_LIGHTS as u64,
+};
+/// Texels along each side of an opacity map.
+pub const SHADOW_RESOLUTION: CountRange = CountRange {
+    name: "shadows.resolution",
+    min: 8,
+    max: 4096,
+};
+/// The opacity maps' optical-depth multiplier (1 physical, 0 no shadows).
+pub const SHADOW_DENSITY: Range = Range {
+    name: "shadows.density",
+    min: End::Closed(0.0),
+    max: End::Closed(1000.0),
+    unit: "",
+};
+/// The transmittance below which a light adds no direct light.
+pub const SHADOW_CUTOFF: Range = Range {
+    name: "shadows.cutoff",
+    min: End::Closed(0.0),
+    max: End::Closed(0.01),
+    unit: "",
+};
+/// Rotation of the environment about the up axis, degrees.
+pub const ENV_ROTATE_DEG: Range = Range {
+    name: "env_rotate_deg",
+    min: End::Closed(-360.0),
+    max: End::Closed(360.0),
+    unit: " degrees",
+};
+
+/// `[a, b, c]` and nothing else: serde's fixed-size arrays read the first three numbers of a
+/// longer list and drop the rest without a word.
+pub fn exactly_three<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
+    let values = Vec::<f64>::deserialize(d)?;
+    <[f64; 3]>::try_from(values.as_slice()).map_err(|_| {
+        serde::de::Error::invalid_length(values.len(), &"three numbers [r, g, b] or [x, y, z]")
+    })
+}
+
+/// [`exactly_three`] for an optional key.
+pub fn maybe_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, D::Error> {
+    exactly_three(d).map(Some)
 }
 
 impl SceneSpec {
@@ -112,42 +207,45 @@ impl SceneSpec {
             path: path.into(),
             source,
         })?;
-        toml::from_str(&text).map_err(|source| SceneError::Toml {
+        toml::from_str(&text).map_err(|e| SceneError::Toml {
             path: path.into(),
-            source,
+            at: e
+                .span()
+                .map(|span| line_and_column(&text, span.start))
+                .unwrap_or_default(),
+            message: e.message().trim().replace('\n', "; "),
         })
     }
 
-    /// Checks the numbers that are not checked where they are used.
+    /// Checks every number against its range, each named by its scene key.
     pub fn validate(&self) -> Result<(), SceneError> {
-        self.hair.validate()?;
-        let bad = |m: &str| Err(SceneError::Invalid(m.into()));
-        if self.width == 0 || self.height == 0 || self.width > 16384 || self.height > 16384 {
-            return bad("width and height must lie in 1..=16384");
+        self.hair.validate().map_err(SceneError::Hair)?;
+        SIZE.named("width").check_usize(self.width)?;
+        SIZE.named("height").check_usize(self.height)?;
+        QUADRATURE.check_usize(self.quadrature)?;
+        SUPERSAMPLING.check_usize(self.supersampling)?;
+        BRUTE_GRID.check_usize(self.brute_grid)?;
+        SHADOW_RESOLUTION.check_usize(self.shadows.resolution)?;
+        SHADOW_DENSITY.check(self.shadows.density)?;
+        SHADOW_CUTOFF.check(self.shadows.cutoff)?;
+        LIGHTS.check_usize(self.lights)?;
+        if self.groom.parse::<Preset>().is_ok() {
+            STRANDS.check_usize(self.strands)?;
         }
-        if !(2..=crate::srbf::quadrature::MAX_SEGMENTS).contains(&self.quadrature) {
-            return bad("quadrature (segments m) must lie in 2..=256");
-        }
-        if !(1..=8).contains(&self.supersampling) {
-            return bad("supersampling must lie in 1..=8");
-        }
-        if !(1..=64).contains(&self.brute_grid) {
-            return bad("brute_grid must lie in 1..=64");
-        }
-        if !(8..=4096).contains(&self.shadows.resolution)
-            || self.shadows.density.is_nan()
-            || self.shadows.density < 0.0
-        {
-            return bad("shadow resolution must lie in 8..=4096 and density be ≥ 0");
-        }
-        if !(0.0..=0.01).contains(&self.shadows.cutoff) {
-            return bad("shadow cutoff must lie in [0, 0.01]");
-        }
-        if self.lights == 0 {
-            return bad("lights must be at least 1");
+        ENV_ROTATE_DEG.check(self.env_rotate_deg)?;
+        if let Some(camera) = &self.camera {
+            camera.validate()?;
         }
         Ok(())
     }
+}
+
+/// ` line L column C` of byte `offset` in `text` (1-based).
+fn line_and_column(text: &str, offset: usize) -> String {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    format!(" line {line} column {column}")
 }
 
 /// A loaded scene.
@@ -171,8 +269,17 @@ impl Scene {
     /// of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
         spec.validate()?;
-        let groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
-        let env = load_or_default(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
+        if let Some(lights) = &lights {
+            cuticle_light::validate_lights(lights)?;
+        }
+        let mut groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
+        if let Some(path) = &spec.strand_absorption {
+            groom = groom
+                .with_strand_absorption(path)
+                .map_err(|e| SceneError::Groom(format!("strand absorption {path}: {e}")))?;
+        }
+        validate_strands(&spec, &groom)?;
+        let env = load_env(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
         let (lights, fit_error) = match lights {
             Some(lights) => (lights, None),
@@ -235,6 +342,48 @@ impl Scene {
     }
 }
 
+/// Every strand's own absorption (from the groom's appearance) within the fiber's ranges, so
+/// shading never meets parameters the exact model refuses.
+fn validate_strands(spec: &SceneSpec, groom: &Groom) -> Result<(), SceneError> {
+    if spec.hair.mu_a.is_some() {
+        return Ok(());
+    }
+    for (s, appearance) in groom.appearance().iter().enumerate() {
+        spec.hair
+            .fiber(Some(appearance))
+            .validate()
+            .map_err(|e| SceneError::Groom(format!("strand {s}'s absorption: {e}")))?;
+    }
+    Ok(())
+}
+
+/// The environment a scene names: `constant:R,G,B` (or `constant:V`) is a uniform map of that
+/// radiance (each channel finite and ≥ 0); anything else goes to the light crate's
+/// [`load_or_default`].
+pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
+    let Some(values) = spec.strip_prefix("constant:") else {
+        return Ok(load_or_default(spec)?);
+    };
+    let bad = || {
+        SceneError::Invalid(format!(
+            "environment {spec}: constant takes one radiance or R,G,B, each finite and >= 0"
+        ))
+    };
+    let parsed: Vec<f32> = values
+        .split(',')
+        .map(|v| v.trim().parse::<f32>().map_err(|_| bad()))
+        .collect::<Result<_, _>>()?;
+    let rgb = match parsed.as_slice() {
+        [v] => Vec3::splat(*v),
+        [r, g, b] => Vec3::new(*r, *g, *b),
+        _ => return Err(bad()),
+    };
+    if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
+        return Err(bad());
+    }
+    Ok(EnvMap::new(16, 8, vec![rgb; 16 * 8]))
+}
+
 /// A preset name or a `.hair` path.
 pub fn load_groom(spec: &str, strands: usize) -> Result<Groom, SceneError> {
     match spec.parse::<Preset>() {
@@ -257,4 +406,28 @@ pub fn light_to_world(d: DVec3) -> DVec3 {
 /// World direction → light-crate direction, the inverse of [`light_to_world`].
 pub fn world_to_light(d: DVec3) -> DVec3 {
     DVec3::new(d.x, d.z, -d.y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_environments_parse_and_bad_ones_are_refused() {
+        let env = load_env("constant:0.5,1,2").unwrap();
+        assert_eq!(env.radiance(Vec3::Y), Vec3::new(0.5, 1.0, 2.0));
+        assert_eq!(load_env("constant:1").unwrap().radiance(Vec3::X), Vec3::ONE);
+        for bad in [
+            "constant:",
+            "constant:1,2",
+            "constant:-1",
+            "constant:nan",
+            "constant:a,b,c",
+        ] {
+            assert!(
+                matches!(load_env(bad), Err(SceneError::Invalid(_))),
+                "{bad}"
+            );
+        }
+    }
 }

@@ -11,9 +11,11 @@
 
 use cuticle_groom::{Groom, GroomParts};
 
-/// Longest segment kept whole, as a fraction of the groom's bounding radius: 1/48, about 5
-/// opacity-map texels at the default 256.
-pub const MAX_SEGMENT: f32 = 1.0 / 48.0;
+/// Longest segment kept whole, as a fraction of the groom's bounding radius: 1/12, about 20
+/// opacity-map texels at the default 256. The built-in groom's segments (up to about 1/16)
+/// stay whole, so the default scene shades the points it always had; straight.hair's
+/// (just over 1/12) are split in two.
+pub const MAX_SEGMENT: f32 = 1.0 / 12.0;
 
 /// `groom` with every segment longer than [`MAX_SEGMENT`] of its bounding radius split into
 /// equal pieces (points, thickness, colour and transparency interpolated linearly; strand
@@ -101,11 +103,18 @@ mod tests {
         let p = g.positions();
         assert_eq!(p[0], points[0]);
         assert_eq!(*p.last().unwrap(), *points.last().unwrap());
-        // Bounding radius ≈ 0.54, limit ≈ 0.0112: the 0.5 segment becomes 45 pieces.
-        assert_eq!(g.point_count(), 97 + 44 + 1);
+        // Bounding radius √(0.96² + 0.5²)/2: the 0.5 segment becomes ⌈0.5 / limit⌉ pieces.
+        let limit = MAX_SEGMENT * 0.5 * (0.96f32.powi(2) + 0.25).sqrt();
+        let pieces = (0.5 / limit).ceil() as usize;
+        assert!(pieces > 5, "{pieces}");
+        assert_eq!(g.point_count(), 97 + pieces);
         let t = g.thickness();
-        assert!((t[97] - (9.7 + 0.1 / 45.0)).abs() < 1e-4, "{}", t[97]);
-        // 0.01 apart beside a short strand a unit away: limit 1.386/2/48 = 0.0144, none split.
+        assert!(
+            (t[97] - (9.7 + 0.1 / pieces as f32)).abs() < 1e-4,
+            "{}",
+            t[97]
+        );
+        // 0.01 apart beside a short strand a unit away (limit ≥ 1.386/2/12): none split.
         let mut short: Vec<Vec3> = (0..=96)
             .map(|i| Vec3::new(i as f32 * 0.01, 0.0, 0.0))
             .collect();

@@ -85,7 +85,6 @@ pub fn convolve_sharp(k1: f64, k2: f64, c: f64) -> f64 {
 /// λ/(area/√π) over ln(area/√π), built once; areas at or beyond 2π (a uniform lobe) give the
 /// widest bandwidth, 20.
 pub fn bandwidth_for_integral(area: f64) -> f64 {
-    static TABLE: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
     let naive = area / PI.sqrt();
     if naive <= WIDTH_TABLE.0 {
         return naive;
@@ -93,13 +92,31 @@ pub fn bandwidth_for_integral(area: f64) -> f64 {
     if area >= 2.0 * PI * 0.99995 {
         return 20.0;
     }
-    let table = TABLE.get_or_init(build_width_table);
+    let table = WIDTH_CORRECTION.get_or_init(build_width_table);
     let (l0, l1) = (WIDTH_TABLE.0.ln(), WIDTH_TABLE.1.ln());
     let t = ((naive.ln() - l0) / (l1 - l0)).clamp(0.0, 1.0) * (WIDTH_TABLE.2 - 1) as f64;
     let i = (t as usize).min(WIDTH_TABLE.2 - 2);
     let f = t - i as f64;
     naive * (table[i] + f * (table[i + 1] - table[i]))
 }
+
+/// The width table of [`bandwidth_for_integral`] for a back end that uploads it: the
+/// correction λ/(area/√π) at `nodes` points evenly spaced in ln(area/√π) over `range`; below
+/// the range the correction is 1, at or beyond an area of 2π·0.99995 the bandwidth is 20.
+pub struct WidthTable {
+    pub range: (f64, f64),
+    pub correction: &'static [f64],
+}
+
+/// The width table [`bandwidth_for_integral`] reads.
+pub fn width_table() -> WidthTable {
+    WidthTable {
+        range: (WIDTH_TABLE.0, WIDTH_TABLE.1),
+        correction: WIDTH_CORRECTION.get_or_init(build_width_table),
+    }
+}
+
+static WIDTH_CORRECTION: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
 
 /// Range of area/√π the width table covers, and its node count.
 const WIDTH_TABLE: (f64, f64, usize) = (1e-3, 2.0 * 1.772_453_850_905_516, 512);

@@ -6,7 +6,7 @@
 /// Largest σ_a tabulated (the parameters' validated range).
 pub const SIGMA_MAX: f64 = 1000.0;
 /// The axis is linear below this σ_a and logarithmic above.
-const SIGMA_SCALE: f64 = 0.02;
+pub const SIGMA_SCALE: f64 = 0.02;
 
 /// x of σ_a (negative σ_a reads 0).
 pub fn coordinate(sigma_a: f64) -> f64 {

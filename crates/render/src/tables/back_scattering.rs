@@ -152,6 +152,20 @@ impl BackScatteringTables {
     }
 }
 
+/// The stored form, for a back end that uploads it (cuticle-gpu forms the averages after its
+/// own lookup, as [`BackScatteringTables::at_coordinate`] does).
+impl BackScatteringTables {
+    /// [ā_f, ā_b, α_f, α_b, β_f², β_b²] over (|θ_d|, absorption coordinate).
+    pub fn grid(&self) -> &Grid2<6> {
+        &self.grid
+    }
+
+    /// The d_b the averages are formed with.
+    pub fn d_b(&self) -> f64 {
+        self.d_b
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

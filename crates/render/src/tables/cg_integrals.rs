@@ -77,6 +77,12 @@ impl Tables {
             .lookup(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln(), theta_d.abs())
     }
 
+    /// The grids as stored: [𝒞_0/Z … 𝒞_6/Z, ln Z] over (ln λ′, δ); ℋ^TT and ℋ^TRT over
+    /// (ln η, θ_d). For a back end that uploads them.
+    pub fn grids(&self) -> (&Grid2<8>, &Grid2<3>, &Grid2<3>) {
+        (&self.cosine, &self.h_tt, &self.h_trt)
+    }
+
     /// Number of table entries (for reports).
     pub fn entries(&self) -> usize {
         self.cosine.len() + self.h_tt.len() + self.h_trt.len()

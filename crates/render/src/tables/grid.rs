@@ -72,9 +72,34 @@ impl<const N: usize> Grid2<N> {
         self.values.len()
     }
 
+    /// The node layout, for a back end that uploads the grid (cuticle-gpu interpolates it as
+    /// [`Self::lookup_cells`] does).
+    pub fn layout(&self) -> GridLayout {
+        GridLayout {
+            nx: self.nx,
+            ny: self.ny,
+            x: (self.x0, self.x1),
+            y: (self.y0, self.y1),
+        }
+    }
+
+    /// The node values, node (i, j) at `i * ny + j`.
+    pub fn values(&self) -> &[[f64; N]] {
+        &self.values
+    }
+
     pub fn is_empty(&self) -> bool {
         self.values.is_empty()
     }
+}
+
+/// Where a grid's nodes lie: `nx × ny` nodes over `x.0..=x.1` × `y.0..=y.1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridLayout {
+    pub nx: usize,
+    pub ny: usize,
+    pub x: (f64, f64),
+    pub y: (f64, f64),
 }
 
 /// A lower node index along one axis and the fraction of the way to the next.

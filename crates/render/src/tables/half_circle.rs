@@ -59,6 +59,11 @@ impl HalfCircle {
         Self { cosines, share }
     }
 
+    /// The grids as stored: W_k over (|δ|, a constant axis) and P over (ln λ, |δ|).
+    pub fn grids(&self) -> (&Grid2<7>, &Grid2<1>) {
+        (&self.cosines, &self.share)
+    }
+
     /// W_k(δ), k = 0…6.
     pub fn cosines(&self, delta: f64) -> [f64; 7] {
         self.cosines

@@ -5,7 +5,7 @@
 //! quadrature sample. Eccentric fibers add an η̄* axis to the TRT table (Xu et al. 2011 eq. 26).
 
 use crate::scene::hair::caustic_bandwidth;
-use crate::srbf::cg_lobes::{Geometry, Lobe, TrtShape, trt_fit, tt_fit};
+use crate::srbf::cg_lobes::{CausticMoments, Geometry, Lobe, TrtShape, trt_fit, tt_fit};
 use crate::tables::absorption_axis;
 use crate::tables::cg_integrals::Tables;
 use crate::tables::grid::{Cell, Grid2};
@@ -114,8 +114,9 @@ impl AzimuthalLobes for FittedLobes<'_> {
     fn trt(&self, eta: f64, theta_d: f64) -> TrtLobes {
         let g = Geometry::new(self.tables, eta, theta_d);
         let shape = trt_shape(self.fiber);
+        let caustics = CausticMoments::new(&g, shape);
         TrtLobes::from_fits(std::array::from_fn(|c| {
-            trt_fit(&g, self.fiber.mu_a[c], shape)
+            trt_fit(&g, &caustics, self.fiber.mu_a[c], shape)
         }))
     }
 }
@@ -159,9 +160,17 @@ impl LobeTable {
             let tt = tt_fit(&g, sigma_a);
             [tt.weight, tt.bandwidth]
         });
+        // The caustic moments depend on θ_d alone: once per θ_d node.
+        let caustics: Vec<CausticMoments> = (0..THETA_D_NODES)
+            .map(|i| {
+                let td = THETA_D_MAX * i as f64 / (THETA_D_NODES - 1) as f64;
+                CausticMoments::new(&Geometry::new(tables, eta, td), shape)
+            })
+            .collect();
         let trt = Grid2::build(axes.0, axes.1, |td, x| {
             let (g, sigma_a) = fit(td, x);
-            let [glint, _, centre] = trt_fit(&g, sigma_a, shape);
+            let node = (td / THETA_D_MAX * (THETA_D_NODES - 1) as f64).round() as usize;
+            let [glint, _, centre] = trt_fit(&g, &caustics[node], sigma_a, shape);
             [
                 glint.centre,
                 glint.weight,
@@ -176,6 +185,12 @@ impl LobeTable {
             tt,
             trt,
         }
+    }
+
+    /// The grids as stored over (|θ_d|, absorption coordinate): TT [weight, bandwidth] and
+    /// TRT [φ*, glint weight, glint bandwidth, centre weight, centre bandwidth].
+    pub fn grids(&self) -> (&Grid2<2>, &Grid2<5>) {
+        (&self.tt, &self.trt)
     }
 
     /// Whether this table holds the lobes of `fiber` (its η and caustics; absorption is an axis).
@@ -242,6 +257,8 @@ pub fn trt_shape(fiber: &MarschnerParams) -> TrtShape {
     TrtShape {
         caustic_bandwidth: caustic_bandwidth(fiber),
         caustic_fade: fiber.caustic_fade,
+        glint_scale: fiber.glint_scale,
+        caustic_limit: fiber.caustic_limit,
     }
 }
 

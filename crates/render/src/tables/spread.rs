@@ -16,7 +16,7 @@ const SIGMA_MAX: f64 = 4.0;
 /// Nodes along each axis.
 const NODES: usize = 129;
 /// Smallest Z returned (the narrow limit's old floor on cos θ_j).
-const MIN_Z: f64 = 1e-4;
+pub const MIN_Z: f64 = 1e-4;
 
 /// Z(|θ_j|, σ) on a grid (Z is even in θ_j).
 #[derive(Clone, Debug)]
@@ -39,6 +39,11 @@ impl SpreadNormalisation {
                 |mu, sigma| [exact(mu, sigma)],
             ),
         }
+    }
+
+    /// The grid as stored: Z over (|θ_j|, σ), before the floor [`MIN_Z`].
+    pub fn grid(&self) -> &Grid2<1> {
+        &self.grid
     }
 
     /// Z(θ_j, σ), at least 1e-4; σ beyond 4 reads σ = 4, where the spread is nearly flat

@@ -1,0 +1,124 @@
+//! `--device auto|gpu|cpu` for `render` and `bench render`: which renderer runs the scene
+//! (crate cuticle-gpu's choice), the GPU render and benchmark, and what render.json and
+//! bench.json record about the device.
+
+use anyhow::{Result, bail};
+use cuticle_gpu::bench::GpuBenchReport;
+use cuticle_gpu::{Backend, Choice, GpuDevice, GpuRenderer};
+use cuticle_render::{Image, Method, Renderer, Scene, Timings};
+use serde_json::{Value, json};
+
+/// Resolves `--device` for `method` before any work: the brute force and the path tracer run
+/// on the CPU only.
+pub fn choose(choice: Choice, method: Method) -> Result<Backend> {
+    match (method, choice) {
+        (Method::Srbf, choice) => Ok(Backend::choose(choice)?),
+        (_, Choice::Gpu) => {
+            bail!("--method {method:?} runs on the CPU only: use --device cpu or auto")
+        }
+        (_, _) => Ok(Backend::Cpu),
+    }
+}
+
+/// One GPU frame as `render` reports it.
+pub struct GpuRendered {
+    pub image: Image,
+    pub visible_points: usize,
+    pub coverage: f64,
+    /// The visibility buffer drawn (for coverage.exr).
+    pub visibility: cuticle_render::frame::raster::Coverage,
+    pub timings: Timings,
+    pub device: Value,
+}
+
+/// The scene on the GPU: prepare (drawing and shadows by the CPU renderer), shade, resolve.
+pub fn render(device: &GpuDevice, cpu: &Renderer, scene: &Scene) -> Result<GpuRendered> {
+    let gpu = GpuRenderer::new(device, cpu);
+    let (image, frame) = gpu.render(scene)?;
+    Ok(GpuRendered {
+        visible_points: frame.prepared().points.len(),
+        coverage: frame.prepared().coverage.covered_fraction(),
+        visibility: frame.prepared().coverage.clone(),
+        timings: frame.timings(),
+        device: json!({
+            "name": "gpu",
+            "adapter": device.summary,
+            "passes": frame.passes(),
+            "upload_seconds": frame.upload_seconds(),
+            "gpu_seconds": frame.gpu_seconds(),
+            "stages_on_cpu": ["drawing", "shadows"],
+        }),
+        image,
+    })
+}
+
+/// render.json's `"device"` for the CPU renderer.
+pub fn cpu_json() -> Value {
+    json!({ "name": "cpu" })
+}
+
+/// The GPU benchmark.
+pub fn bench(
+    device: &GpuDevice,
+    cpu: &Renderer,
+    scene: &Scene,
+    frames: usize,
+) -> Result<GpuBenchReport> {
+    let gpu = GpuRenderer::new(device, cpu);
+    Ok(cuticle_gpu::bench::run(&gpu, scene, frames)?)
+}
+
+/// bench.json's `"seconds"` and `"device"` of a GPU run.
+pub fn bench_json(device: &GpuDevice, r: &GpuBenchReport) -> Value {
+    json!({
+        "device": { "name": "gpu", "adapter": device.summary, "stages_on_cpu": ["drawing", "shadows"] },
+        "frames": r.frames,
+        "visible_points": r.visible_points,
+        "seconds": {
+            "full_frame": {
+                "drawing": r.full.drawing,
+                "shadows": r.full.shadows,
+                "upload": r.upload,
+                "shading": r.full.shading,
+                "resolve": r.full.resolve,
+                "frame": r.full_frame,
+            },
+            "rerender": {
+                "shading": r.rerender.shading,
+                "resolve": r.rerender.resolve,
+                "frame": r.rerender_frame,
+                "gpu_timestamps": r.rerender_gpu,
+            },
+        },
+    })
+}
+
+/// The GPU benchmark's summary line.
+pub fn print_bench(device: &GpuDevice, r: &GpuBenchReport) {
+    let f = &r.full;
+    let stamps = r
+        .rerender_gpu
+        .map_or("no timestamp queries on this adapter".to_string(), |g| {
+            format!(
+                "GPU timestamps: shading {:.4} s, resolve {:.4} s",
+                g.shading, g.resolve
+            )
+        });
+    println!(
+        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} and shadows {:.3} on the CPU, upload {:.3}, shading {:.3}, resolve {:.3}); re-render after an absorption edit {:.4} s (shading {:.4}, resolve {:.4}), {:.1} frames/s; {stamps}",
+        device.summary.name,
+        device.summary.kind,
+        r.frames,
+        r.visible_points,
+        r.full_frame,
+        f.drawing,
+        f.shadows,
+        r.upload,
+        f.shading,
+        f.resolve,
+        r.rerender_frame,
+        r.rerender.shading,
+        r.rerender.resolve,
+        1.0 / r.rerender_frame.max(1e-9),
+    );
+}

@@ -1,0 +1,339 @@
+//! `cuticle render --method path`: the path tracer (crate cuticle-trace) on the scene the SRBF
+//! renderer reads (same groom, camera, environment and image size); and `cuticle bench trace`,
+//! its rays and samples per second.
+//!
+//! With `--model marschner` (the default) every strand has exactly the scene's hair parameters
+//! (`HairParams::fiber`, as `--method srbf|brute` shade); the other models take the fiber flags
+//! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
+//! Chiang 2016) for every strand.
+
+use crate::commands::render::{exr_bytes, png_bytes};
+use crate::output::OutDir;
+use crate::progress::bar;
+use anyhow::{Context, Result, bail};
+use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, FiberParams, NonSeparable};
+use cuticle_light::ToneMap;
+use cuticle_render::{Image, Scene, SceneSpec};
+use cuticle_trace::{Accel, PathOptions, StrandModels, Strategy, TraceImage, TraceOptions};
+use glam::DVec3;
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The models `--model` selects for the path tracer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum TraceModel {
+    Marschner,
+    Deon2011,
+    Nonseparable,
+    Chiang2016,
+}
+
+/// The path tracer's flags of `cuticle render` (used with `--method path`).
+#[derive(clap::Args, Clone, Debug)]
+pub struct PathArgs {
+    /// Samples per pixel (--method path).
+    #[arg(long, default_value_t = 64)]
+    pub spp: u32,
+    /// Seed of the path tracer's random numbers.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Most scattering events of a path.
+    #[arg(long, default_value_t = 64)]
+    pub max_depth: u32,
+    /// Fiber model of the path tracer; marschner takes the scene's hair parameters.
+    #[arg(long, value_enum, default_value_t = TraceModel::Marschner)]
+    pub model: TraceModel,
+    /// Longitudinal roughness β of d'Eon 2011 / non-separable (Beckmann), in (0, 1].
+    #[arg(long, default_value_t = 0.04, allow_negative_numbers = true)]
+    pub beta: f64,
+    /// Scale tilt α, degrees (d'Eon 2011, non-separable, Chiang 2016).
+    #[arg(long, default_value_t = -2.0, allow_negative_numbers = true)]
+    pub alpha_deg: f64,
+    /// Eumelanin concentration, instead of --mu-a (models other than marschner).
+    #[arg(long, allow_negative_numbers = true)]
+    pub eumelanin: Option<f64>,
+    /// Pheomelanin concentration, instead of --mu-a.
+    #[arg(long, allow_negative_numbers = true)]
+    pub pheomelanin: Option<f64>,
+    /// Chiang 2016's longitudinal roughness β_m, in (0, 1].
+    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
+    pub beta_m: f64,
+    /// Chiang 2016's azimuthal roughness β_n, in (0, 1].
+    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
+    pub beta_n: f64,
+}
+
+impl PathArgs {
+    fn options(&self) -> Result<TraceOptions> {
+        if self.spp == 0 || self.spp > 1 << 20 {
+            bail!("--spp must lie in 1..=1048576, got {}", self.spp);
+        }
+        if self.max_depth == 0 || self.max_depth > 100_000 {
+            bail!("--max-depth must lie in 1..=100000, got {}", self.max_depth);
+        }
+        Ok(TraceOptions {
+            spp: self.spp,
+            seed: self.seed,
+            path: PathOptions {
+                max_depth: self.max_depth,
+                ..PathOptions::default()
+            },
+        })
+    }
+
+    /// The fiber parameters of the non-Marschner models: η from the scene, absorption from
+    /// the scene's `--mu-a`, else melanin, else the scene's default σ_a.
+    fn fiber(&self, spec: &SceneSpec, beta: f64) -> Result<FiberParams> {
+        let hair = &spec.hair;
+        let mu_a = match (hair.mu_a, self.eumelanin, self.pheomelanin) {
+            (Some(m), _, _) => DVec3::from_array(m),
+            (None, None, None) => DVec3::from_array(hair.default_mu_a),
+            (None, eu, pheo) => {
+                let (eu, pheo) = (eu.unwrap_or(0.0), pheo.unwrap_or(0.0));
+                if !(eu.is_finite() && pheo.is_finite() && eu >= 0.0 && pheo >= 0.0) {
+                    bail!("melanin concentrations must be finite and non-negative");
+                }
+                mu_a_from_melanin(eu, pheo)
+            }
+        };
+        let params = FiberParams {
+            eta: hair.eta,
+            beta,
+            alpha: self.alpha_deg.to_radians(),
+            mu_a,
+        };
+        params.validate()?;
+        Ok(params)
+    }
+
+    fn models(&self, scene: &Scene) -> Result<StrandModels> {
+        let strands = scene.groom.strand_count();
+        let one = |m: Box<dyn FiberModel>| Ok(StrandModels::uniform(m, strands));
+        match self.model {
+            TraceModel::Marschner => {
+                StrandModels::marschner(scene).context("Marschner 2003 parameters")
+            }
+            TraceModel::Deon2011 => one(Box::new(
+                DEon2011::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
+            )),
+            TraceModel::Nonseparable => one(Box::new(
+                NonSeparable::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
+            )),
+            TraceModel::Chiang2016 => one(Box::new(Chiang2016::new(
+                self.fiber(&scene.spec, self.beta_m)?,
+                self.beta_n,
+            )?)),
+        }
+    }
+
+    fn json(&self, scene: &Scene) -> Result<Value> {
+        let fiber = match self.model {
+            TraceModel::Marschner => Value::Null,
+            TraceModel::Chiang2016 => {
+                let p = self.fiber(&scene.spec, self.beta_m)?;
+                json!({"beta_m": self.beta_m, "beta_n": self.beta_n, "alpha_deg": self.alpha_deg, "eta": p.eta, "mu_a": p.mu_a.to_array()})
+            }
+            _ => {
+                let p = self.fiber(&scene.spec, self.beta)?;
+                json!({"beta": self.beta, "alpha_deg": self.alpha_deg, "eta": p.eta, "mu_a": p.mu_a.to_array()})
+            }
+        };
+        Ok(json!({
+            "model": format!("{:?}", self.model).to_lowercase(),
+            "spp": self.spp,
+            "seed": self.seed,
+            "max_depth": self.max_depth,
+            "strategy": Strategy::Mis,
+            "fiber": fiber,
+        }))
+    }
+}
+
+/// Loads the scene without an SRBF fit (the path tracer samples the map itself).
+fn load(spec: SceneSpec) -> Result<Scene> {
+    Ok(Scene::load(spec, Some(Vec::new()))?)
+}
+
+/// `cuticle render --method path`.
+pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
+    let options = args.options()?;
+    let scene = load(spec)?;
+    let models = args.models(&scene)?;
+    let params = args.json(&scene)?;
+    eprintln!(
+        "path tracing {} strands ({} points) at {}x{}, {} spp, model {}",
+        scene.groom.strand_count(),
+        scene.groom.point_count(),
+        scene.spec.width,
+        scene.spec.height,
+        options.spp,
+        models.name()
+    );
+    let progress = bar(options.spp as u64, "trace");
+    let report = |done: usize, _total: usize| progress.set_position(done as u64);
+    let traced = cuticle_trace::render(&scene, &models, &options, &report);
+    progress.finish_and_clear();
+    if traced.image.pixels.iter().any(|p| !p.is_finite()) {
+        bail!("the path tracer produced a non-finite pixel; nothing written");
+    }
+    let mut out_dir = OutDir::create(out, "render")?;
+    let tone = ToneMap::for_map(&scene.env);
+    out_dir.write("image.png", &png_bytes(&traced.image, tone)?)?;
+    out_dir.write("image.exr", &exr_bytes(&traced.image)?)?;
+    out_dir.write("standard_error.exr", &standard_error_exr(&traced)?)?;
+    out_dir.finish(record(&scene, params, &traced)?)?;
+    let s = &traced.stats;
+    println!(
+        "{}: {} spp in {:.2} s ({:.3} spp/s, {:.2} M rays/s, {} rays; BVH of {} tubes {:.2} s); mean standard error {:.4}",
+        out.display(),
+        traced.spp,
+        s.trace_seconds,
+        traced.spp as f64 / s.trace_seconds.max(1e-12),
+        s.rays_per_second() / 1e6,
+        s.rays,
+        s.tubes,
+        s.build_seconds,
+        mean_standard_error(&traced)
+    );
+    Ok(())
+}
+
+fn mean_standard_error(t: &TraceImage) -> f64 {
+    let n = t.standard_error.len().max(1) as f64;
+    t.standard_error
+        .iter()
+        .map(|e| (e.x + e.y + e.z) / 3.0)
+        .sum::<f64>()
+        / n
+}
+
+/// render.json of a path-traced image.
+fn record(scene: &Scene, path: Value, t: &TraceImage) -> Result<Value> {
+    let s = &t.stats;
+    Ok(json!({
+        "params": serde_json::to_value(&scene.spec)?,
+        "method": "path",
+        "path": path,
+        "strands": scene.groom.strand_count(),
+        "points": scene.groom.point_count(),
+        "tubes": s.tubes,
+        "spp": t.spp,
+        "samples": s.samples,
+        "rays": s.rays,
+        "samples_per_second": s.samples_per_second(),
+        "spp_per_second": t.spp as f64 / s.trace_seconds.max(1e-12),
+        "rays_per_second": s.rays_per_second(),
+        "threads": rayon::current_num_threads(),
+        "mean_standard_error": mean_standard_error(t),
+        "seconds": {"bvh": s.build_seconds, "trace": s.trace_seconds},
+    }))
+}
+
+/// The per-pixel standard error of the mean, linear RGB EXR.
+fn standard_error_exr(t: &TraceImage) -> Result<Vec<u8>> {
+    exr_bytes(&Image {
+        width: t.image.width,
+        height: t.image.height,
+        pixels: t.standard_error.clone(),
+    })
+}
+
+/// `cuticle bench trace`'s flags.
+#[derive(clap::Args, Clone, Debug)]
+pub struct TraceBenchArgs {
+    /// A groom preset or a .hair file.
+    #[arg(long, default_value = "../shared/data/hair/straight.hair")]
+    pub groom: String,
+    /// Environment: default, constant:R,G,B or an .hdr/.exr map.
+    #[arg(long, default_value = "default")]
+    pub env: String,
+    #[arg(long, default_value_t = 360)]
+    pub width: usize,
+    #[arg(long, default_value_t = 240)]
+    pub height: usize,
+    /// Samples per pixel of the path-traced part.
+    #[arg(long, default_value_t = 4)]
+    pub spp: u32,
+    #[arg(long, default_value_t = 64)]
+    pub max_depth: u32,
+    /// Output folder.
+    #[arg(long, default_value = "out/bench-trace")]
+    pub out: PathBuf,
+}
+
+/// `cuticle bench trace`: the BVH's build time, ray casting alone (camera rays, then rays in
+/// random directions from the hits: the ray–groom intersections per second), and the path
+/// tracer (Marschner 2003 at the scene's defaults, MIS, depth 64): rays and spp per second.
+pub fn bench(args: &TraceBenchArgs) -> Result<()> {
+    let spec = SceneSpec {
+        groom: args.groom.clone(),
+        env: args.env.clone(),
+        width: args.width,
+        height: args.height,
+        ..SceneSpec::default()
+    };
+    let scene = load(spec)?;
+    let accel = Accel::build(&scene.groom);
+    let casting = cast_rays(&scene, &accel);
+    let models = StrandModels::marschner(&scene)?;
+    let options = TraceOptions {
+        spp: args.spp.max(1),
+        seed: 1,
+        path: PathOptions {
+            max_depth: args.max_depth.max(1),
+            ..PathOptions::default()
+        },
+    };
+    let traced = cuticle_trace::render_with(&scene, &accel, &models, &options, &|_, _| {});
+    let s = &traced.stats;
+    let threads = rayon::current_num_threads();
+    let record = json!({
+        "groom": args.groom, "env": args.env, "width": args.width, "height": args.height,
+        "strands": scene.groom.strand_count(), "tubes": accel.tube_count(), "threads": threads,
+        "bvh_seconds": accel.build_seconds,
+        "ray_casting": {"rays": casting.0, "seconds": casting.1, "rays_per_second": casting.0 as f64 / casting.1},
+        "path": {"spp": traced.spp, "max_depth": options.path.max_depth, "rays": s.rays, "seconds": s.trace_seconds,
+                 "rays_per_second": s.rays_per_second(), "spp_per_second": traced.spp as f64 / s.trace_seconds},
+    });
+    OutDir::create(&args.out, "bench")?.finish(record)?;
+    println!(
+        "{} tubes, BVH {:.3} s; ray casting {:.2} M rays/s ({:.2} M per thread, {threads} threads); path tracing {:.2} M rays/s, {:.3} spp/s ({:.2} s per spp)",
+        accel.tube_count(),
+        accel.build_seconds,
+        casting.0 as f64 / casting.1 / 1e6,
+        casting.0 as f64 / casting.1 / 1e6 / threads as f64,
+        s.rays_per_second() / 1e6,
+        traced.spp as f64 / s.trace_seconds,
+        s.trace_seconds / traced.spp as f64
+    );
+    Ok(())
+}
+
+/// Camera rays through every pixel centre, and from each hit one ray in a fixed pseudo-random
+/// direction, four times over: (rays, seconds).
+fn cast_rays(scene: &Scene, accel: &Accel) -> (u64, f64) {
+    use rayon::prelude::*;
+    let (w, h) = (scene.spec.width, scene.spec.height);
+    let view = scene.camera.view(w, h);
+    let start = Instant::now();
+    let rays: u64 = (0..4 * w * h)
+        .into_par_iter()
+        .map(|k| {
+            let p = k % (w * h);
+            let d = view.ray((p % w) as f64 + 0.5, (p / w) as f64 + 0.5);
+            let Some(hit) = accel.closest(view.eye, d) else {
+                return 1;
+            };
+            let f = accel.frame(hit, view.eye, d);
+            let x = (k as f64 * 0.618_034).fract() * std::f64::consts::TAU;
+            let z = ((k as f64 * 0.754_878).fract() * 2.0 - 1.0).clamp(-1.0, 1.0);
+            let r = (1.0 - z * z).sqrt();
+            let dir = DVec3::new(r * x.cos(), r * x.sin(), z);
+            std::hint::black_box(accel.closest(f.on_axis, dir));
+            2
+        })
+        .sum();
+    (rays, start.elapsed().as_secs_f64())
+}

@@ -1,0 +1,50 @@
+//! `cuticle view`: the live look-development window (crate cuticle-view) on a scene from the
+//! same flags and scene file as `render`; `--screenshot FILE` saves the window once its first
+//! full-quality frame is shown, and exits.
+
+use crate::commands::render::{SceneArgs, spec_from};
+use anyhow::Result;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Clone, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Save the window's contents as PNG here once the first full-quality frame is shown, then
+    /// exit.
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    /// UI frames to wait after the first full-quality frame before the screenshot.
+    #[arg(long, default_value_t = 2)]
+    after_frames: usize,
+    /// Where the window's Save and screenshot buttons write.
+    #[arg(long, default_value = "out/view")]
+    out: PathBuf,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let (spec, lights) = spec_from(&args.scene)?;
+    spec.validate()?;
+    if spec.method == cuticle_render::Method::Path {
+        anyhow::bail!(
+            "the window shades with srbf or brute; --method path is for `cuticle render`"
+        );
+    }
+    if let Some(path) = &args.screenshot
+        && let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        anyhow::bail!(
+            "--screenshot {}: no folder {}",
+            path.display(),
+            dir.display()
+        );
+    }
+    cuticle_view::run(cuticle_view::ViewOptions {
+        spec,
+        lights,
+        screenshot: args.screenshot,
+        after_frames: args.after_frames,
+        out: args.out,
+    })
+}

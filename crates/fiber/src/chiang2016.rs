@@ -1,0 +1,493 @@
+//! The production hair model of Chiang, Bitterli, Tappan and Burley 2016, *A Practical and
+//! Controllable Hair and Fur Model for Production Path Tracing*, as pbrt-v4 (`HairBxDF`) and
+//! Mitsuba 3 (`hair`) ship it: β_m, β_n, α, η and σ_a per unit radius (or melanin through
+//! [`crate::absorption::mu_a_from_melanin`]).
+//!
+//! # The near-field model
+//! For the given direction ω_i and the offset h ∈ [−1, 1] at which the ray along −ω_i meets the
+//! fiber (docs/conventions.md §2; the sign is fixed by [`crate::bravais::azimuthal_deflection`]:
+//! Φ(0, h) = −2 asin h, i.e. h is minus the hit's offset along w = u × v when v is ω_i's
+//! projection on the normal plane — the trace crate's geometry test checks this), lobes
+//! p = 0 (R), 1 (TT), 2 (TRT) and the remainder p ≥ 3 are
+//!
+//!   S_h(ω_i, ω_o) = Σ_p M_p(θ_o) A_p(θ_i, h) N_p(φ; h), φ = φ_o − φ_i,
+//!
+//! - M_p the von Mises–Fisher marginal of d'Eon et al. 2011 ([`LongitudinalWidth`]) about the
+//!   cone −θ_i + 2α (R), −θ_i − α (TT), −θ_i − 4α (TRT), −θ_i (remainder), with variances
+//!   v_R = (0.726 β_m + 0.812 β_m² + 3.7 β_m²⁰)², v_TT = v_R/4, v_TRT = v_rest = 4 v_R
+//!   (Chiang et al. 2016 eq. 7, §4.1's tilts). pbrt-v4 writes the tilt as a shift of the given
+//!   inclination; that is the same cone, so each M_p has unit integral ∫ M_p cos θ_o dθ_o = 1
+//!   for any α.
+//! - A_p the attenuation of [`crate::attenuation::attenuation`] (exact 3D Fresnel factor,
+//!   T = exp(−2 σ_a cos γ_t / cos θ_t)); the remainder is Σ_{p≥3} A_p (Chiang et al. 2016 eq. 6).
+//! - N_p(φ; h) the logistic of scale s = √(π/8)(0.265 β_n + 1.194 β_n² + 5.372 β_n²²)
+//!   (Chiang et al. 2016 eq. 8) about Φ(p, h) = 2pγ_t − 2γ_i + pπ, trimmed to [−π, π] and
+//!   renormalised there (eq. 10–11); the remainder is uniform, 1/2π.
+//!
+//! With σ_a = 0, Σ_p A_p = 1 and every M_p, N_p has unit integral, so ∫ S_h dω_o = 1 exactly at
+//! every h: the white furnace holds per offset, not only on average.
+//!
+//! # The far-field S the crate's models share (docs/conventions.md §3)
+//! A ray from ω_i meets the fiber at h uniformly distributed across its projected width, so the
+//! fraction of intercepted power leaving per steradian is the average S = ½ ∫ S_h dh, which is
+//! what [`FiberModel::eval`] and [`FiberModel::pdf`] return (a composite Gauss–Legendre rule in
+//! γ_i = asin h, panels following the logistic's width, as [`crate::azimuthal`] does for d'Eon
+//! 2011). The path tracer knows the offset of every hit and calls the near-field
+//! [`FiberModel::eval_at`], [`FiberModel::pdf_at`] and [`FiberModel::sample_at`] instead, with
+//! ω_i the direction the ray arrived from; averaged over the hits a pixel sees, that is the
+//! far-field model again.
+//!
+//! # Sampling
+//! As Chiang et al. 2016 §4.3: a lobe by the channel mean of A_p(θ_i, h), θ_o from the vMF
+//! exactly (d'Eon et al. 2013), φ = Φ(p, h) plus a trimmed-logistic draw (uniform for the
+//! remainder). The density is closed form, Σ_p (A_p / Σ A) M_p N_p, so weights are S_h / pdf;
+//! with σ_a = 0 they are exactly 1. The far-field [`FiberModel::sample`] first draws h uniformly.
+
+use crate::attenuation::attenuation;
+use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::frame::{FiberAngles, wrap_pi};
+use crate::lobe::{Lobe, LobeValues, channel_mean};
+use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
+use crate::model::{FiberModel, FiberSample, select_and_remap};
+use crate::params::{FiberParams, ParamError};
+use crate::ranges;
+use crate::special::GaussLegendre;
+use glam::DVec3;
+use std::f64::consts::PI;
+
+/// Nodes per panel of the far-field rule in γ_i.
+const PANEL_NODES: usize = 16;
+/// The most panels of the far-field rule (β_n ≈ 0.003 reaches it).
+const MAX_PANELS: usize = 1024;
+/// Lobes with their own M and N: R, TT, TRT, and the remainder p ≥ 3.
+const LOBES: usize = 4;
+
+/// The Chiang et al. 2016 fiber model. `FiberParams::beta` is the longitudinal roughness β_m.
+#[derive(Clone, Debug)]
+pub struct Chiang2016 {
+    params: FiberParams,
+    beta_n: f64,
+    /// M_p's width per lobe (R, TT, TRT, remainder).
+    widths: [LongitudinalWidth; LOBES],
+    /// Offset of each lobe's cone from −θ_i.
+    cone_shift: [f64; LOBES],
+    /// The logistic scale s.
+    s: f64,
+}
+
+/// The values the lobes share at one offset h: attenuation and deflection geometry.
+struct Offset {
+    /// A_p for R, TT, TRT and the remainder.
+    a: [DVec3; LOBES],
+    h: f64,
+    eta_prime: f64,
+}
+
+impl Chiang2016 {
+    /// The model for `params` (β = β_m) and azimuthal roughness `beta_n`, both in (0, 1].
+    pub fn new(params: FiberParams, beta_n: f64) -> Result<Self, ParamError> {
+        params.validate()?;
+        ranges::BETA.named("beta_n").check(beta_n)?;
+        let v_r = longitudinal_variance(params.beta);
+        let v = [v_r, 0.25 * v_r, 4.0 * v_r, 4.0 * v_r];
+        let a = params.alpha;
+        Ok(Self {
+            params,
+            beta_n,
+            widths: v.map(LongitudinalWidth::new),
+            cone_shift: [2.0 * a, -a, -4.0 * a, 0.0],
+            s: logistic_scale(beta_n),
+        })
+    }
+
+    pub fn params(&self) -> &FiberParams {
+        &self.params
+    }
+
+    /// β_m, the longitudinal roughness.
+    pub fn beta_m(&self) -> f64 {
+        self.params.beta
+    }
+
+    pub fn beta_n(&self) -> f64 {
+        self.beta_n
+    }
+
+    /// The logistic scale s of N_p (Chiang et al. 2016 eq. 8).
+    pub fn logistic_scale(&self) -> f64 {
+        self.s
+    }
+
+    /// The longitudinal lobe of lobe `p` (0 R, 1 TT, 2 TRT, 3 the remainder) for light at θ_i.
+    pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
+        LongitudinalLobe::new(self.widths[p].v, -theta_i + self.cone_shift[p])
+    }
+
+    /// M_p(θ_o) for every lobe.
+    fn m_all(&self, theta_i: f64, theta_o: f64) -> [f64; LOBES] {
+        let (so, co) = theta_o.sin_cos();
+        std::array::from_fn(|p| {
+            let (sc, cc) = (-theta_i + self.cone_shift[p]).sin_cos();
+            self.widths[p].eval(sc, cc, so, co)
+        })
+    }
+
+    fn offset(&self, theta_i: f64, h: f64) -> Offset {
+        let h = h.clamp(-1.0, 1.0);
+        let att = attenuation(theta_i, h, self.params.eta, self.params.mu_a);
+        Offset {
+            a: [att.0[0], att.0[1], att.0[2], att.0[3] + att.0[4]],
+            h,
+            eta_prime: eta_perp(self.params.eta, theta_i),
+        }
+    }
+
+    /// N_p(φ; h) for every lobe.
+    fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
+        std::array::from_fn(|p| match p {
+            3 => 0.5 / PI,
+            _ => trimmed_logistic(
+                wrap_pi(phi - azimuthal_deflection(p as u32, at.h, at.eta_prime)),
+                self.s,
+            ),
+        })
+    }
+
+    /// The near-field lobes at offset h (module documentation).
+    fn near(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> LobeValues {
+        let m = self.m_all(wi.theta, wo.theta);
+        let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
+        near_lobes(&m, &n, &at.a)
+    }
+
+    /// The near-field sampling density at offset h.
+    fn near_pdf(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> f64 {
+        let m = self.m_all(wi.theta, wo.theta);
+        let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
+        let probs = selection(&at.a);
+        (0..LOBES).map(|p| probs[p] * m[p] * n[p]).sum()
+    }
+
+    /// Calls `f(h, weight)` at the nodes of the rule whose weighted sum of f is ½ ∫ f dh over
+    /// [−1, 1] (composite Gauss–Legendre in γ_i, dh = cos γ_i dγ_i).
+    fn for_offsets(&self, mut f: impl FnMut(f64, f64)) {
+        let rule = GaussLegendre::cached(PANEL_NODES);
+        let panels = self.panel_count();
+        let width = PI / panels as f64;
+        for k in 0..panels {
+            let mid = -0.5 * PI + (k as f64 + 0.5) * width;
+            for (x, w) in rule.nodes.iter().zip(&rule.weights) {
+                let gamma = mid + 0.5 * width * x;
+                f(gamma.sin(), w * gamma.cos() * 0.25 * width);
+            }
+        }
+    }
+
+    /// Panels in γ_i such that Φ (slope at most 2 in γ_i for p ≤ 2 and η′ > 1) moves by at
+    /// most a third of the logistic's standard deviation πs/√3 between nodes.
+    fn panel_count(&self) -> usize {
+        let sigma = PI * self.s / 3f64.sqrt();
+        let per_panel = PANEL_NODES as f64 * sigma / 3.0;
+        ((2.0 * PI / per_panel).ceil() as usize).clamp(2, MAX_PANELS)
+    }
+
+    /// The near-field sample at offset h from three uniform numbers (module documentation).
+    fn sample_near(&self, wi: FiberAngles, at: &Offset, u: [f64; 3]) -> Option<FiberSample> {
+        let (p, u_phi) = select_and_remap(&selection(&at.a), u[0]);
+        let theta_o = self.longitudinal(p, wi.theta).sample(u[1], u[2]);
+        let phi = match p {
+            3 => 2.0 * PI * u_phi - PI,
+            _ => {
+                azimuthal_deflection(p as u32, at.h, at.eta_prime)
+                    + sample_trimmed_logistic(u_phi, self.s)
+            }
+        };
+        let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
+        let pdf = self.near_pdf(wi, wo, at);
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return None;
+        }
+        let weight = self.near(wi, wo, at).total() / pdf;
+        let lobe = if p == 3 {
+            Lobe::Rest
+        } else {
+            Lobe::from_index(p)
+        };
+        weight.is_finite().then_some(FiberSample {
+            wo,
+            weight,
+            pdf,
+            lobe,
+            iterations: 1,
+        })
+    }
+}
+
+/// v_R of Chiang et al. 2016 eq. 7.
+pub fn longitudinal_variance(beta_m: f64) -> f64 {
+    (0.726 * beta_m + 0.812 * beta_m.powi(2) + 3.7 * beta_m.powi(20)).powi(2)
+}
+
+/// s of Chiang et al. 2016 eq. 8.
+pub fn logistic_scale(beta_n: f64) -> f64 {
+    (PI / 8.0).sqrt() * (0.265 * beta_n + 1.194 * beta_n.powi(2) + 5.372 * beta_n.powi(22))
+}
+
+/// The logistic density of scale s (Chiang et al. 2016 eq. 10), in the form stable for any x.
+fn logistic(x: f64, s: f64) -> f64 {
+    let e = (-x.abs() / s).exp();
+    e / (s * (1.0 + e) * (1.0 + e))
+}
+
+fn logistic_cdf(x: f64, s: f64) -> f64 {
+    1.0 / (1.0 + (-x / s).exp())
+}
+
+/// The logistic trimmed to [−π, π] and renormalised there (Chiang et al. 2016 eq. 11).
+pub fn trimmed_logistic(x: f64, s: f64) -> f64 {
+    logistic(x, s) / (logistic_cdf(PI, s) - logistic_cdf(-PI, s))
+}
+
+/// A draw from [`trimmed_logistic`] by inverting its CDF.
+pub fn sample_trimmed_logistic(u: f64, s: f64) -> f64 {
+    let lo = logistic_cdf(-PI, s);
+    let k = logistic_cdf(PI, s) - lo;
+    let c = (u * k + lo).clamp(1e-300, 1.0 - 1e-16);
+    (-s * (1.0 / c - 1.0).ln()).clamp(-PI, PI)
+}
+
+/// Lobe choice ∝ the channel mean of A_p; R alone when nothing is left.
+fn selection(a: &[DVec3; LOBES]) -> [f64; LOBES] {
+    let m = a.map(channel_mean);
+    let total: f64 = m.iter().sum();
+    if total > 0.0 {
+        m.map(|x| x / total)
+    } else {
+        [1.0, 0.0, 0.0, 0.0]
+    }
+}
+
+/// M_p A_p N_p in the crate's lobe slots; Chiang's remainder p ≥ 3 is reported as `rest`
+/// (TRRT is part of it, so the TRRT slot stays zero).
+fn near_lobes(m: &[f64; LOBES], n: &[f64; LOBES], a: &[DVec3; LOBES]) -> LobeValues {
+    let lobe = |p: usize| a[p] * (m[p] * n[p]);
+    LobeValues([lobe(0), lobe(1), lobe(2), DVec3::ZERO, lobe(3)])
+}
+
+impl FiberModel for Chiang2016 {
+    fn name(&self) -> &'static str {
+        "chiang2016"
+    }
+
+    /// The far-field S = ½ ∫ S_h dh.
+    fn eval(&self, wi: FiberAngles, wo: FiberAngles) -> LobeValues {
+        let m = self.m_all(wi.theta, wo.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let mut sum = [DVec3::ZERO; LOBES];
+        self.for_offsets(|h, w| {
+            let at = self.offset(wi.theta, h);
+            let n = self.n_all(&at, phi);
+            (0..LOBES).for_each(|p| sum[p] += at.a[p] * (n[p] * w));
+        });
+        near_lobes(&m, &[1.0; LOBES], &sum)
+    }
+
+    /// h uniform in [−1, 1] from `u[0]`, then the near-field sample; weight and pdf far-field.
+    fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
+        let at = self.offset(wi.theta, 2.0 * u[0] - 1.0);
+        let near = self.sample_near(wi, &at, [u[1], u[2], u[3]])?;
+        crate::deon2011::finish_sample(self, wi, near.wo, near.lobe, 1)
+    }
+
+    fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
+        let m = self.m_all(wi.theta, wo.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let mut sum = [0.0; LOBES];
+        self.for_offsets(|h, w| {
+            let at = self.offset(wi.theta, h);
+            let n = self.n_all(&at, phi);
+            let probs = selection(&at.a);
+            (0..LOBES).for_each(|p| sum[p] += probs[p] * n[p] * w);
+        });
+        (0..LOBES).map(|p| sum[p] * m[p]).sum()
+    }
+
+    fn eval_at(&self, wi: FiberAngles, wo: FiberAngles, h: f64) -> LobeValues {
+        self.near(wi, wo, &self.offset(wi.theta, h))
+    }
+
+    fn pdf_at(&self, wi: FiberAngles, wo: FiberAngles, h: f64) -> f64 {
+        self.near_pdf(wi, wo, &self.offset(wi.theta, h))
+    }
+
+    /// The near-field sample at h from `u[1..4]` (`u[0]`, the far-field's offset, is unused).
+    fn sample_at(&self, wi: FiberAngles, h: f64, u: [f64; 4]) -> Option<FiberSample> {
+        self.sample_near(wi, &self.offset(wi.theta, h), [u[1], u[2], u[3]])
+    }
+}
+
+/// [`Chiang2016`] at one offset h, as a far-field model: the near-field functions with h fixed,
+/// so the crate's furnace and χ² checks (and `lobes`) can examine the near field directly.
+#[derive(Clone, Debug)]
+pub struct AtOffset<'a> {
+    pub model: &'a Chiang2016,
+    pub h: f64,
+}
+
+impl FiberModel for AtOffset<'_> {
+    fn name(&self) -> &'static str {
+        "chiang2016-at-offset"
+    }
+
+    fn eval(&self, wi: FiberAngles, wo: FiberAngles) -> LobeValues {
+        self.model.eval_at(wi, wo, self.h)
+    }
+
+    fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
+        self.model.sample_at(wi, self.h, u)
+    }
+
+    fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
+        self.model.pdf_at(wi, wo, self.h)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::furnace::{FurnaceRule, albedo};
+    use crate::testing::{check_weights, chi2_test};
+
+    fn model(beta_m: f64, beta_n: f64, alpha_deg: f64, mu_a: DVec3) -> Chiang2016 {
+        let params = FiberParams {
+            eta: 1.55,
+            beta: beta_m,
+            alpha: alpha_deg.to_radians(),
+            mu_a,
+        };
+        Chiang2016::new(params, beta_n).unwrap()
+    }
+
+    fn rule(m: &Chiang2016) -> FurnaceRule {
+        FurnaceRule {
+            beta: m.widths[1].v.sqrt(),
+            max_shift: 4.0 * m.params.alpha.abs(),
+            resolution: 1,
+        }
+    }
+
+    /// The white furnace per offset: with σ_a = 0, ∫ S_h dω_o = 1 within 0.2 % at every h,
+    /// inclination, roughness and tilt tried (the integration rule's own error under 0.1 %).
+    #[test]
+    fn lossless_fiber_is_white_at_every_offset() {
+        for (beta_m, beta_n, alpha_deg) in [(0.3, 0.3, 0.0), (0.1, 0.1, 2.0), (0.6, 0.8, -3.0)] {
+            let m = model(beta_m, beta_n, alpha_deg, DVec3::ZERO);
+            for h in [-0.95, 0.3, 0.999] {
+                for theta_i in [0.0, -1.3] {
+                    let est = albedo(&AtOffset { model: &m, h }, theta_i, rule(&m));
+                    assert!(est.error_estimate.x < 1e-3, "{est:?}");
+                    assert!(
+                        (est.albedo.x - 1.0).abs() < 2e-3,
+                        "β_m {beta_m} β_n {beta_n} α {alpha_deg} h {h} θ_i {theta_i}: {}",
+                        est.albedo.x
+                    );
+                }
+            }
+        }
+    }
+
+    /// The far field (S averaged over h by quadrature) is white too, and an absorbing fiber's
+    /// albedo is the mean attenuation ½ ∫ Σ_p A_p dh, channel by channel.
+    #[test]
+    fn far_field_albedo_is_the_mean_attenuation() {
+        let white = model(0.5, 0.6, 2.0, DVec3::ZERO);
+        let est = albedo(&white, 0.4, rule(&white));
+        assert!((est.albedo.x - 1.0).abs() < 2e-3, "{est:?}");
+        let mu_a = DVec3::new(0.2, 0.6, 1.5);
+        let brown = model(0.5, 0.6, 2.0, mu_a);
+        let est = albedo(&brown, 0.4, rule(&brown));
+        let mut mean = DVec3::ZERO;
+        brown.for_offsets(|h, w| mean += attenuation(0.4, h, 1.55, mu_a).total() * w);
+        assert!(
+            (est.albedo - mean).abs().max_element() < 2e-3,
+            "{} vs {mean}",
+            est.albedo
+        );
+        assert!(mean.x > mean.y && mean.y > mean.z && mean.z < 0.9);
+    }
+
+    /// χ² of the near-field sampling at fixed offsets, and of the far-field sampling (h drawn
+    /// first) against the quadrature pdf; every weight is S / pdf.
+    #[test]
+    fn sampling_follows_pdf_chi2() {
+        let cases = [
+            (0.3, 0.3, 0.3, 2.0, DVec3::ZERO, 0.2),
+            (-1.1, 0.2, 0.5, -3.0, DVec3::new(0.3, 0.8, 2.0), -0.7),
+            (1.2, 0.1, 0.1, 2.0, DVec3::splat(0.1), 0.95),
+            (0.0, 0.6, 0.9, 0.0, DVec3::new(2.0, 1.0, 0.0), 0.0),
+        ];
+        let family = cases.len() + 1;
+        for (n, &(theta, bm, bn, a, mu, h)) in cases.iter().enumerate() {
+            let m = model(bm, bn, a, mu);
+            let near = AtOffset { model: &m, h };
+            let wi = FiberAngles::new(theta, -0.4);
+            let p = chi2_test(&near, wi, 1 << 19, 11 + n as u64, (32, 64), family);
+            assert!(p.is_ok(), "case {n}: {p:?}");
+            check_weights(&near, wi, 5_000, 3 + n as u64, 1e-9).unwrap();
+        }
+        let m = model(0.4, 0.6, 2.0, DVec3::new(0.2, 0.4, 0.8));
+        let wi = FiberAngles::new(0.5, 0.1);
+        let p = chi2_test(&m, wi, 1 << 17, 99, (16, 32), family);
+        assert!(p.is_ok(), "far field: {p:?}");
+        check_weights(&m, wi, 500, 5, 1e-6).unwrap();
+    }
+
+    /// With σ_a = 0 every near-field weight is exactly 1 (S_h and the density coincide).
+    #[test]
+    fn lossless_weights_are_one() {
+        let m = model(0.3, 0.3, 2.0, DVec3::ZERO);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..2000 {
+            let wi = FiberAngles::new(3.0 * next() - 1.5, 0.0);
+            let s = m.sample_at(wi, 2.0 * next() - 1.0, [0.0, next(), next(), next()]);
+            let s = s.expect("a lossless fiber always scatters");
+            assert!((s.weight - DVec3::ONE).abs().max_element() < 1e-9, "{s:?}");
+        }
+    }
+
+    #[test]
+    fn trimmed_logistic_is_normalised_and_sampled_by_its_inverse() {
+        for s in [0.01, 0.12, 1.5] {
+            let rule = GaussLegendre::cached(64);
+            let mass: f64 = (0..64)
+                .map(|k| {
+                    let a = -PI + 2.0 * PI * k as f64 / 64.0;
+                    rule.integrate(a, a + PI / 32.0, |x| trimmed_logistic(x, s))
+                })
+                .sum();
+            assert!((mass - 1.0).abs() < 1e-9, "s {s}: {mass}");
+            // The inverse CDF: the draw at u has CDF u.
+            for u in [0.01, 0.3, 0.5, 0.9] {
+                let x = sample_trimmed_logistic(u, s);
+                let lo = logistic_cdf(-PI, s);
+                let cdf = (logistic_cdf(x, s) - lo) / (logistic_cdf(PI, s) - lo);
+                assert!((cdf - u).abs() < 1e-9, "s {s} u {u}: {cdf}");
+            }
+        }
+    }
+
+    #[test]
+    fn azimuthal_roughness_is_validated() {
+        let p = FiberParams::default();
+        assert!(Chiang2016::new(p, 0.3).is_ok());
+        for bad in [0.0, -0.1, 1.5, f64::NAN] {
+            assert!(Chiang2016::new(p, bad).is_err(), "{bad}");
+        }
+    }
+}

@@ -1,0 +1,81 @@
+//! The GPU renderer's benchmark, the twin of `cuticle_render::bench`: full frames (drawing and
+//! shadows on the CPU, upload, shading and resolve on the GPU) and re-renders after an
+//! absorption edit (every strand's record rewritten, then shading and resolve), as medians of
+//! each stage, with the GPU's own timestamps where the adapter has them.
+
+use crate::frame::GpuSeconds;
+use crate::renderer::{GpuError, GpuRenderer};
+use cuticle_render::Scene;
+use cuticle_render::Timings;
+use cuticle_render::bench::{median, with_absorption_edit};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Medians over the benchmark's frames.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct GpuBenchReport {
+    pub frames: usize,
+    pub visible_points: usize,
+    /// Median seconds of each stage of a full frame (wall; shading and resolve each waited for,
+    /// the resolve with its readback of the image).
+    pub full: Timings,
+    /// Median seconds of uploading a prepared frame.
+    pub upload: f64,
+    /// Median wall seconds of a full frame: drawing + shadows + upload + shading + resolve.
+    pub full_frame: f64,
+    /// Median seconds of each stage of a re-render after an absorption edit.
+    pub rerender: Timings,
+    /// Median wall seconds of a re-render, the edit's strand upload included.
+    pub rerender_frame: f64,
+    /// Median GPU seconds of a re-render's passes, where the adapter has timestamps.
+    pub rerender_gpu: Option<GpuSeconds>,
+}
+
+/// Renders `scene` `frames` times in full, and after each frame re-renders it with its
+/// absorption edited, keeping that frame's visibility and shadows.
+pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchReport, GpuError> {
+    let frames = frames.max(1);
+    let (mut full, mut upload, mut full_frame) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut rerender, mut rerender_frame, mut gpu_times) = (Vec::new(), Vec::new(), Vec::new());
+    let mut visible_points = 0;
+    for i in 0..frames {
+        let start = Instant::now();
+        let (_, mut frame) = gpu.render(scene)?;
+        full_frame.push(start.elapsed().as_secs_f64());
+        visible_points = frame.prepared().points.len();
+        full.push(frame.timings());
+        upload.push(frame.upload_seconds());
+        let edited = with_absorption_edit(scene, i);
+        let start = Instant::now();
+        gpu.shade(&mut frame, &edited);
+        rerender_frame.push(start.elapsed().as_secs_f64());
+        rerender.push(frame.timings());
+        gpu_times.extend(frame.gpu_seconds());
+    }
+    let rerender_gpu = (!gpu_times.is_empty()).then(|| GpuSeconds {
+        shading: median(gpu_times.iter().map(|t| t.shading).collect()),
+        resolve: median(gpu_times.iter().map(|t| t.resolve).collect()),
+    });
+    Ok(GpuBenchReport {
+        frames,
+        visible_points,
+        full: median_timings(&full),
+        upload: median(upload),
+        full_frame: median(full_frame),
+        rerender: median_timings(&rerender),
+        rerender_frame: median(rerender_frame),
+        rerender_gpu,
+    })
+}
+
+fn median_timings(runs: &[Timings]) -> Timings {
+    let m = |f: fn(&Timings) -> f64| median(runs.iter().map(f).collect());
+    Timings {
+        tables: m(|t| t.tables),
+        srbf_fit: m(|t| t.srbf_fit),
+        drawing: m(|t| t.drawing),
+        shadows: m(|t| t.shadows),
+        shading: m(|t| t.shading),
+        resolve: m(|t| t.resolve),
+    }
+}

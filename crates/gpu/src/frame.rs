@@ -1,0 +1,119 @@
+//! One prepared frame on the GPU: what stays valid while only hair parameters change (the
+//! visible points, their shadows, the lights, the visibility buffer, the background) in device
+//! buffers, the parameter tables and strand records last uploaded, and counts of what ran.
+
+use crate::buffers::Stopwatch;
+use crate::shading::ShadeParams;
+use crate::strands::{StrandParams, StrandSource};
+use cuticle_render::tables::back_scattering::BackScatteringTables;
+use cuticle_render::tables::lobe_table::LobeTable;
+use cuticle_render::{Prepared, Timings};
+use std::sync::Arc;
+
+/// How many times each stage ran on this frame, and how many uploads an edit caused: an edit
+/// of hair parameters must add shading and resolve passes only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Passes {
+    /// Visibility-buffer drawings (on the CPU, for now).
+    pub drawing: usize,
+    /// Opacity-map builds (on the CPU, for now).
+    pub shadows: usize,
+    /// Shading dispatches.
+    pub shading: usize,
+    /// Resolve dispatches.
+    pub resolve: usize,
+    /// Uploads of the lobe table or back-scattering tables.
+    pub table_uploads: usize,
+    /// Writes of strand records (a whole re-derivation or an `update_strands`).
+    pub strand_uploads: usize,
+}
+
+/// The strand seen at each subsample, for picking strands to paint.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Visibility {
+    pub width: usize,
+    pub height: usize,
+    /// Subsamples per pixel along each axis.
+    pub ss: usize,
+    /// Per subsample, row-major over `width·ss × height·ss`: the strand index, or
+    /// [`Visibility::EMPTY`].
+    pub strand: Vec<u32>,
+}
+
+impl Visibility {
+    /// No strand covers the subsample.
+    pub const EMPTY: u32 = u32::MAX;
+
+    /// The strands seen in pixel (x, y), one per subsample.
+    pub fn pixel(&self, x: usize, y: usize) -> impl Iterator<Item = u32> + '_ {
+        let (ss, sw) = (self.ss, self.width * self.ss);
+        (0..ss * ss).map(move |k| self.strand[(y * ss + k / ss) * sw + x * ss + k % ss])
+    }
+}
+
+/// Seconds each pass took on the GPU by timestamp queries, where the adapter has them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct GpuSeconds {
+    pub shading: f64,
+    pub resolve: f64,
+}
+
+/// A frame ready to shade ([`crate::GpuRenderer::prepare`]).
+pub struct GpuFrame {
+    pub(crate) prepared: Prepared,
+    pub(crate) params: ShadeParams,
+    pub(crate) params_buffer: wgpu::Buffer,
+    pub(crate) lobes: Option<(Arc<LobeTable>, wgpu::Buffer)>,
+    pub(crate) back: Option<(Arc<BackScatteringTables>, wgpu::Buffer)>,
+    /// Bound while no back-scattering tables are (single scattering only).
+    pub(crate) no_back: wgpu::Buffer,
+    pub(crate) strands: Vec<StrandParams>,
+    pub(crate) strand_source: StrandSource,
+    pub(crate) strands_buffer: wgpu::Buffer,
+    pub(crate) points_buffer: wgpu::Buffer,
+    pub(crate) shadow_buffer: wgpu::Buffer,
+    pub(crate) lights_buffer: wgpu::Buffer,
+    pub(crate) colours_buffer: wgpu::Buffer,
+    pub(crate) image_buffer: wgpu::Buffer,
+    /// Rebuilt when a table buffer is replaced.
+    pub(crate) shade_group: Option<wgpu::BindGroup>,
+    pub(crate) resolve_group: wgpu::BindGroup,
+    pub(crate) stopwatch: Option<Stopwatch>,
+    pub(crate) passes: Passes,
+    pub(crate) timings: Timings,
+    pub(crate) upload_seconds: f64,
+    pub(crate) gpu_seconds: Option<GpuSeconds>,
+}
+
+impl GpuFrame {
+    /// What ran on this frame so far.
+    pub fn passes(&self) -> Passes {
+        self.passes
+    }
+
+    /// Wall seconds of each stage of the last prepare and shade (drawing and shadows on the
+    /// CPU; shading and resolve each submitted and waited for, the resolve with its readback).
+    pub fn timings(&self) -> Timings {
+        self.timings
+    }
+
+    /// Seconds spent uploading the prepared frame to the device.
+    pub fn upload_seconds(&self) -> f64 {
+        self.upload_seconds
+    }
+
+    /// The last shade's passes timed on the GPU, where the adapter has timestamp queries.
+    pub fn gpu_seconds(&self) -> Option<GpuSeconds> {
+        self.gpu_seconds
+    }
+
+    /// The CPU renderer's prepared frame this one uploaded (visible points, their shadows).
+    pub fn prepared(&self) -> &Prepared {
+        &self.prepared
+    }
+
+    /// The strand records as last written.
+    pub fn strands(&self) -> &[StrandParams] {
+        &self.strands
+    }
+}

@@ -1,0 +1,488 @@
+//! The GPU renderer: the static tables and compiled passes of one device, and the frame calls
+//! (prepare, shade, update_strands, visibility) that [`crate`]'s documentation walks through.
+
+use crate::buffers::{self, Stopwatch};
+use crate::device::GpuDevice;
+use crate::frame::{GpuFrame, GpuSeconds, Passes, Visibility};
+use crate::resolve::{self, ResolveParams};
+use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
+use crate::strands::{self, StrandError, StrandParams, StrandSource};
+use crate::tables::{self, GridDesc, slot};
+use cuticle_render::frame::raster::EMPTY;
+use cuticle_render::scene::hair::caustic_bandwidth;
+use cuticle_render::tables::absorption_axis::SIGMA_SCALE;
+use cuticle_render::tables::spread::MIN_Z;
+use cuticle_render::{Image, Method, Renderer, Scene, Timings};
+use glam::DVec3;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Why a scene cannot be rendered on the GPU.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum GpuError {
+    #[error("the GPU back end renders the SRBF method only (use --device cpu for --method brute)")]
+    Method,
+    #[error("{what} needs {bytes} bytes, more than the GPU's buffer limit of {limit}")]
+    TooLarge {
+        what: &'static str,
+        bytes: u64,
+        limit: u64,
+    },
+}
+
+/// The renderer on one device.
+pub struct GpuRenderer {
+    gpu: GpuDevice,
+    cpu: Renderer,
+    static_tables: wgpu::Buffer,
+    static_grids: [GridDesc; slot::COUNT],
+    shade: wgpu::ComputePipeline,
+    resolve: wgpu::ComputePipeline,
+}
+
+impl GpuRenderer {
+    /// Uploads the CPU renderer's parameter-independent tables and compiles the passes. The
+    /// CPU renderer's lobe and back-scattering caches are shared (a clone of `cpu` holds the
+    /// same ones).
+    pub fn new(gpu: &GpuDevice, cpu: &Renderer) -> Self {
+        let packed = tables::static_grids(&cpu.tables, &cpu.half, &cpu.spread);
+        let mut static_grids = [GridDesc::default(); slot::COUNT];
+        packed.describe(&mut static_grids);
+        let device = &gpu.device;
+        Self {
+            static_tables: buffers::storage(
+                device,
+                "static tables",
+                bytemuck::cast_slice(&packed.data),
+                false,
+            ),
+            static_grids,
+            shade: shading::pipeline(device),
+            resolve: resolve::pipeline(device),
+            gpu: gpu.clone(),
+            cpu: cpu.clone(),
+        }
+    }
+
+    pub fn device(&self) -> &GpuDevice {
+        &self.gpu
+    }
+
+    /// Stages 2–3 (drawing and shadows, by the CPU renderer for now) and the upload of their
+    /// results, the lights, the background and every strand's record.
+    pub fn prepare(&self, scene: &Scene) -> Result<GpuFrame, GpuError> {
+        if scene.spec.method != Method::Srbf {
+            return Err(GpuError::Method);
+        }
+        let mut timings = Timings {
+            tables: self.cpu.table_seconds,
+            srbf_fit: scene.fit_seconds,
+            ..Timings::default()
+        };
+        let prepared = self.cpu.prepare(scene, &mut timings);
+        let start = Instant::now();
+        let cov = &prepared.coverage;
+        let point_count = scene.groom.point_count();
+        self.check_sizes(&[
+            ("the visibility buffer", cov.segment.len() * 8),
+            ("the shadows", prepared.shadow.len() * 4),
+            ("the point colours", point_count * 16),
+            ("the image", cov.width * cov.height * 16),
+        ])?;
+        let device = &self.gpu.device;
+        let positions = scene.groom.positions();
+        let tangents = scene.groom.tangents();
+        let points: Vec<PointRecord> = prepared
+            .points
+            .iter()
+            .map(|&p| PointRecord {
+                position: positions[p as usize].to_array(),
+                strand: prepared.strand_of_point[p as usize],
+                tangent: tangents[p as usize].to_array(),
+                index: p,
+            })
+            .collect();
+        let lights: Vec<LightRecord> = prepared
+            .lights
+            .iter()
+            .map(|l| LightRecord {
+                direction: l.direction.as_vec3().to_array(),
+                bandwidth: l.bandwidth as f32,
+                radiance: l.radiance.as_vec3().to_array(),
+                _pad: 0.0,
+            })
+            .collect();
+        let coverage: Vec<[u32; 2]> = cov
+            .segment
+            .iter()
+            .zip(&cov.t)
+            .map(|(&s, &t)| [s, t.to_bits()])
+            .collect();
+        let background: Vec<[f32; 4]> = prepared
+            .background
+            .iter()
+            .map(|b| [b.x as f32, b.y as f32, b.z as f32, 1.0])
+            .collect();
+        let strand_records = strands::derive(scene);
+        let mut params = ShadeParams {
+            eye: prepared.view.eye.as_vec3().to_array(),
+            visible: points.len() as u32,
+            lights: lights.len() as u32,
+            sigma_scale: SIGMA_SCALE as f32,
+            min_z: MIN_Z as f32,
+            grids: self.static_grids,
+            ..ShadeParams::default()
+        };
+        self.set_hair(&mut params, scene);
+        let params_buffer = buffers::uniform(device, "shade params", bytemuck::bytes_of(&params));
+        let colours_buffer = buffers::output(device, "point colours", point_count * 16);
+        let image_buffer = buffers::output(device, "image", cov.width * cov.height * 16);
+        let coverage_buffer =
+            buffers::storage(device, "visibility", bytemuck::cast_slice(&coverage), false);
+        let background_buffer = buffers::storage(
+            device,
+            "background",
+            bytemuck::cast_slice(&background),
+            false,
+        );
+        let resolve_params = ResolveParams {
+            width: cov.width as u32,
+            height: cov.height as u32,
+            ss: cov.ss as u32,
+            _pad: 0,
+        };
+        let resolve_params_buffer = buffers::uniform(
+            device,
+            "resolve params",
+            bytemuck::bytes_of(&resolve_params),
+        );
+        let resolve_group = bind_group(
+            device,
+            &self.resolve,
+            "resolve",
+            &[
+                &resolve_params_buffer,
+                &coverage_buffer,
+                &background_buffer,
+                &colours_buffer,
+                &image_buffer,
+            ],
+        );
+        let mut frame = GpuFrame {
+            params,
+            params_buffer,
+            lobes: None,
+            back: None,
+            no_back: buffers::storage(device, "no back-scattering tables", &[], false),
+            strands_buffer: buffers::storage(
+                device,
+                "strands",
+                bytemuck::cast_slice(&strand_records),
+                false,
+            ),
+            strands: strand_records,
+            strand_source: StrandSource::of(scene),
+            points_buffer: buffers::storage(device, "points", bytemuck::cast_slice(&points), false),
+            shadow_buffer: buffers::storage(
+                device,
+                "shadows",
+                bytemuck::cast_slice(&prepared.shadow),
+                false,
+            ),
+            lights_buffer: buffers::storage(device, "lights", bytemuck::cast_slice(&lights), false),
+            colours_buffer,
+            image_buffer,
+            shade_group: None,
+            resolve_group,
+            stopwatch: Stopwatch::new(device, &self.gpu.queue, 2),
+            passes: Passes {
+                drawing: 1,
+                shadows: 1,
+                strand_uploads: 1,
+                ..Passes::default()
+            },
+            timings,
+            upload_seconds: 0.0,
+            gpu_seconds: None,
+            prepared,
+        };
+        frame.upload_seconds = start.elapsed().as_secs_f64();
+        Ok(frame)
+    }
+
+    /// Refuses buffers over the device's limits with a clear error (wgpu would panic).
+    fn check_sizes(&self, sizes: &[(&'static str, usize)]) -> Result<(), GpuError> {
+        let limits = self.gpu.device.limits();
+        let limit = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        match sizes.iter().find(|(_, bytes)| *bytes as u64 > limit) {
+            Some(&(what, bytes)) => Err(GpuError::TooLarge {
+                what,
+                bytes: bytes as u64,
+                limit,
+            }),
+            None => Ok(()),
+        }
+    }
+
+    /// The scene's global hair parameters and settings into the uniform.
+    fn set_hair(&self, params: &mut ShadeParams, scene: &Scene) {
+        let spec = &scene.spec;
+        let fiber = spec.hair.fiber(None);
+        params.eta = fiber.eta as f32;
+        params.alpha_r = fiber.alpha_r as f32;
+        params.beta_r = fiber.beta_r as f32;
+        params.eccentricity = fiber.eccentricity as f32;
+        params.caustic_bandwidth = caustic_bandwidth(&fiber) as f32;
+        params.caustic_fade = fiber.caustic_fade as f32;
+        params.d_b = spec.hair.d_b as f32;
+        params.cutoff = spec.shadows.cutoff as f32;
+        params.m = spec.quadrature as u32;
+        params.multiple = spec.multiple as u32;
+    }
+
+    /// Stages 4–5 for the scene's current hair parameters: uploads what they changed (the lobe
+    /// and back-scattering tables when rebuilt, every strand's record when the scene's
+    /// absorption source changed), shades, resolves and reads the image back.
+    pub fn shade(&self, frame: &mut GpuFrame, scene: &Scene) -> Image {
+        self.upload_tables(frame, scene);
+        if StrandSource::of(scene) != frame.strand_source {
+            frame.strands = strands::derive(scene);
+            frame.strand_source = StrandSource::of(scene);
+            self.gpu.queue.write_buffer(
+                &frame.strands_buffer,
+                0,
+                bytemuck::cast_slice(&frame.strands),
+            );
+            frame.passes.strand_uploads += 1;
+        }
+        let mut params = frame.params;
+        self.set_hair(&mut params, scene);
+        frame.params = params;
+        self.gpu
+            .queue
+            .write_buffer(&frame.params_buffer, 0, bytemuck::bytes_of(&params));
+        let group = frame.shade_group.get_or_insert_with(|| {
+            let lobes = &frame.lobes.as_ref().expect("uploaded").1;
+            let back = frame.back.as_ref().map_or(&frame.no_back, |b| &b.1);
+            bind_group(
+                &self.gpu.device,
+                &self.shade,
+                "shade",
+                &[
+                    &frame.params_buffer,
+                    &self.static_tables,
+                    lobes,
+                    back,
+                    &frame.strands_buffer,
+                    &frame.points_buffer,
+                    &frame.shadow_buffer,
+                    &frame.lights_buffer,
+                    &frame.colours_buffer,
+                ],
+            )
+        });
+        let start = Instant::now();
+        let (gx, gy) = shading::workgroups(frame.params.visible as usize);
+        self.submit_pass(
+            &self.shade,
+            group,
+            (gx, gy),
+            frame.stopwatch.as_ref(),
+            0,
+            false,
+        );
+        self.wait();
+        frame.passes.shading += 1;
+        frame.timings.shading = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let (w, h) = (
+            frame.prepared.coverage.width,
+            frame.prepared.coverage.height,
+        );
+        let tiles = (
+            (w as u32).div_ceil(resolve::TILE),
+            (h as u32).div_ceil(resolve::TILE),
+        );
+        let stopwatch = frame.stopwatch.as_ref();
+        self.submit_pass(
+            &self.resolve,
+            &frame.resolve_group,
+            tiles,
+            stopwatch,
+            1,
+            true,
+        );
+        let bytes = buffers::read(
+            &self.gpu.device,
+            &self.gpu.queue,
+            &frame.image_buffer,
+            w * h * 16,
+        );
+        frame.passes.resolve += 1;
+        frame.timings.resolve = start.elapsed().as_secs_f64();
+        frame.gpu_seconds = stopwatch.map(|s| {
+            let t = s.seconds(&self.gpu.device, &self.gpu.queue);
+            GpuSeconds {
+                shading: t[0],
+                resolve: t[1],
+            }
+        });
+        let rgba: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+        Image {
+            width: w,
+            height: h,
+            pixels: rgba
+                .iter()
+                .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
+                .collect(),
+        }
+    }
+
+    /// Uploads the lobe table and (with multiple scattering) the back-scattering tables when
+    /// the CPU renderer rebuilt them for the scene's parameters.
+    fn upload_tables(&self, frame: &mut GpuFrame, scene: &Scene) {
+        let hair = &scene.spec.hair;
+        let fiber = hair.fiber(None);
+        let lobes = self.cpu.lobe_table(&fiber);
+        if frame
+            .lobes
+            .as_ref()
+            .is_none_or(|(l, _)| !Arc::ptr_eq(l, &lobes))
+        {
+            let packed = tables::lobe_grids(&lobes);
+            let buffer = self.table_buffer("lobe table", &packed.data);
+            packed.describe(&mut frame.params.grids);
+            frame.lobes = Some((lobes, buffer));
+            frame.shade_group = None;
+            frame.passes.table_uploads += 1;
+        }
+        if scene.spec.multiple {
+            let back = self.cpu.back_scattering(&fiber, hair.d_b);
+            if frame
+                .back
+                .as_ref()
+                .is_none_or(|(b, _)| !Arc::ptr_eq(b, &back))
+            {
+                let packed = tables::back_grid(&back);
+                let buffer = self.table_buffer("back-scattering tables", &packed.data);
+                packed.describe(&mut frame.params.grids);
+                frame.back = Some((back, buffer));
+                frame.shade_group = None;
+                frame.passes.table_uploads += 1;
+            }
+        }
+    }
+
+    fn table_buffer(&self, label: &str, data: &[f32]) -> wgpu::Buffer {
+        buffers::storage(&self.gpu.device, label, bytemuck::cast_slice(data), false)
+    }
+
+    /// Encodes and submits one compute pass, timed as pass `k` where timestamps exist
+    /// (resolving the queries with the last pass).
+    fn submit_pass(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        group: &wgpu::BindGroup,
+        (x, y): (u32, u32),
+        stopwatch: Option<&Stopwatch>,
+        k: u32,
+        last: bool,
+    ) {
+        let mut encoder = self
+            .gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: None,
+                timestamp_writes: stopwatch.map(|s| s.writes(k)),
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+        if let (Some(s), true) = (stopwatch, last) {
+            s.resolve(&mut encoder);
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+    }
+
+    fn wait(&self) {
+        self.gpu
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .expect("the GPU device was lost");
+    }
+
+    /// Writes the records of strands `first..first + params.len()` (a paint edit) without
+    /// touching the groom or any other strand; the next [`Self::shade`] shows them.
+    pub fn update_strands(
+        &self,
+        frame: &mut GpuFrame,
+        first: usize,
+        params: &[StrandParams],
+    ) -> Result<(), StrandError> {
+        strands::check(first, params, frame.strands.len())?;
+        frame.strands[first..first + params.len()].copy_from_slice(params);
+        self.gpu.queue.write_buffer(
+            &frame.strands_buffer,
+            (first * size_of::<StrandParams>()) as u64,
+            bytemuck::cast_slice(params),
+        );
+        frame.passes.strand_uploads += 1;
+        Ok(())
+    }
+
+    /// The strand seen at each subsample.
+    pub fn visibility(&self, frame: &GpuFrame) -> Visibility {
+        let cov = &frame.prepared.coverage;
+        let of = &frame.prepared.strand_of_point;
+        Visibility {
+            width: cov.width,
+            height: cov.height,
+            ss: cov.ss,
+            strand: cov
+                .segment
+                .iter()
+                .map(|&s| {
+                    if s == EMPTY {
+                        Visibility::EMPTY
+                    } else {
+                        of[s as usize]
+                    }
+                })
+                .collect(),
+        }
+    }
+
+    /// A whole frame: prepare and shade.
+    pub fn render(&self, scene: &Scene) -> Result<(Image, GpuFrame), GpuError> {
+        let mut frame = self.prepare(scene)?;
+        let image = self.shade(&mut frame, scene);
+        Ok((image, frame))
+    }
+}
+
+/// A bind group of `buffers` at bindings 0, 1, … of `pipeline`'s group 0.
+fn bind_group(
+    device: &wgpu::Device,
+    pipeline: &wgpu::ComputePipeline,
+    label: &str,
+    buffers: &[&wgpu::Buffer],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .enumerate()
+        .map(|(k, b)| wgpu::BindGroupEntry {
+            binding: k as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout: &pipeline.get_bind_group_layout(0),
+        entries: &entries,
+    })
+}

@@ -1,0 +1,117 @@
+//! What an edit redoes on the GPU: a hair-parameter edit re-shades and resolves without
+//! redrawing or rebuilding shadows (counted passes), and re-uploading one strand's parameters
+//! changes that strand's pixels and no other, as the CPU renderer paints it.
+
+mod common;
+
+use common::{cpu, device, gpu, hair_pixels, load, relative_rmse, spec};
+use cuticle_gpu::{GpuRenderer, Passes, StrandError, StrandParams, Visibility};
+use cuticle_groom::Absorption;
+use cuticle_render::Renderer;
+
+#[test]
+fn a_hair_edit_reshades_without_redrawing() {
+    // Its own renderers: the tables' one-entry caches must not see other tests' parameters.
+    let cpu = Renderer::new();
+    let gpu = GpuRenderer::new(device(), &cpu);
+    let scene = load(spec(80, "default", 8));
+    let mut frame = gpu.prepare(&scene).unwrap();
+    let before = gpu.shade(&mut frame, &scene);
+    let first = frame.passes();
+    assert_eq!(
+        first,
+        Passes {
+            drawing: 1,
+            shadows: 1,
+            shading: 1,
+            resolve: 1,
+            table_uploads: 2,
+            strand_uploads: 1,
+        }
+    );
+    let mut edited = scene.clone();
+    edited.spec.hair.beta_r_deg = 4.0;
+    let after = gpu.shade(&mut frame, &edited);
+    let second = frame.passes();
+    assert_eq!((second.drawing, second.shadows), (1, 1), "an edit redrew");
+    assert_eq!((second.shading, second.resolve), (2, 2));
+    // β_R rebuilds the back-scattering tables (not the lobe table, which has no β axis).
+    assert_eq!(second.table_uploads, 3);
+    assert_eq!(second.strand_uploads, 1, "no strand changed");
+    assert_ne!(after.pixels, before.pixels, "the edit changed nothing");
+    // The re-shaded frame is the frame rendered afresh with the edit.
+    let (fresh, _) = gpu.render(&edited).unwrap();
+    assert_eq!(after.pixels, fresh.pixels);
+}
+
+/// The strand covering the most subsamples.
+fn most_visible(vis: &Visibility, strands: usize) -> usize {
+    let mut count = vec![0usize; strands];
+    vis.strand
+        .iter()
+        .filter(|&&s| s != Visibility::EMPTY)
+        .for_each(|&s| count[s as usize] += 1);
+    (0..strands).max_by_key(|&s| count[s]).unwrap()
+}
+
+#[test]
+fn updating_one_strand_changes_only_its_pixels() {
+    let scene = load(spec(80, "default", 8));
+    let mut frame = gpu().prepare(&scene).unwrap();
+    let before = gpu().shade(&mut frame, &scene);
+    let vis = gpu().visibility(&frame);
+    let s = most_visible(&vis, scene.groom.strand_count());
+    let paint = [2.0f32, 3.0, 5.0];
+    gpu()
+        .update_strands(&mut frame, s, &[StrandParams::new(paint)])
+        .unwrap();
+    let after = gpu().shade(&mut frame, &scene);
+    assert_eq!(frame.passes().drawing, 1);
+    let (mut touched, mut changed) = (0, 0);
+    for k in 0..before.pixels.len() {
+        let shows = vis
+            .pixel(k % vis.width, k / vis.width)
+            .any(|t| t == s as u32);
+        let differs = before.pixels[k] != after.pixels[k];
+        if shows {
+            touched += 1;
+            changed += differs as usize;
+        } else {
+            assert!(!differs, "pixel {k} shows no strand {s} but changed");
+        }
+    }
+    assert!(touched > 20, "strand {s} covers only {touched} pixels");
+    assert!(
+        changed * 10 >= touched * 9,
+        "{changed} of {touched} pixels changed"
+    );
+    // The CPU renderer with the strand's appearance painted the same way agrees.
+    let mut painted = scene.clone();
+    painted.groom.appearance_mut()[s].absorption = Some(Absorption::SigmaA(paint));
+    let (want, _, _) = cpu().render(&painted);
+    let e = relative_rmse(&after, &want, &hair_pixels(&vis));
+    assert!(e < 5e-3, "painted strand against the CPU: {e}");
+}
+
+#[test]
+fn bad_strand_updates_are_refused() {
+    let scene = load(spec(20, "default", 4));
+    let mut frame = gpu().prepare(&scene).unwrap();
+    let n = scene.groom.strand_count();
+    let before = frame.strands()[0];
+    let ok = StrandParams::new([0.1, 0.2, 0.3]);
+    assert_eq!(
+        gpu().update_strands(&mut frame, n - 1, &[ok, ok]),
+        Err(StrandError::OutOfRange {
+            first: n - 1,
+            end: n + 1,
+            count: n
+        })
+    );
+    assert!(matches!(
+        gpu().update_strands(&mut frame, 0, &[StrandParams::new([0.1, f32::NAN, 0.3])]),
+        Err(StrandError::BadAbsorption { strand: 0, .. })
+    ));
+    assert_eq!(frame.strands()[0], before, "a refused update wrote");
+    assert_eq!(frame.passes().strand_uploads, 1, "a refused update wrote");
+}

@@ -1,0 +1,131 @@
+//! The GPU image against the CPU renderer's (its f64 reference) on small scenes: a preset groom
+//! at 240 × 160 with per-strand absorption, single scattering and with dual scattering, under
+//! the procedural sky and a real map, and an eccentric fiber.
+//!
+//! Bounds: relative RMSE over hair pixels below 5e-3 and no pixel channel off by more than 1e-2
+//! of the brightest (measured on lavapipe: RMSE 5e-5 to 1e-4, worst pixel 8e-5 to 1.5e-4). The
+//! two share every input (visibility, shadows, tables rounded to f32); what differs is f32
+//! arithmetic, and WGSL lets hardware compute sin/cos to 2^-11 absolute and exp to 3 + 2|x| ulp,
+//! which near grazing angles and in the tails of sharp lobes can cost far more than lavapipe's
+//! correctly rounded libm: the bounds are the aim, 50 times what lavapipe shows. The
+//! dual-scattering test checks that the bound can tell: its multiple scattering moves the
+//! image by far more than the bound.
+
+mod common;
+
+use common::{cpu, gpu, hair_pixels, load, relative_rmse, shared_map, spec, worst_relative};
+use cuticle_render::Scene;
+
+/// Renders `scene` on both and returns the relative RMSE over hair pixels.
+fn compare(scene: &Scene, label: &str) -> f64 {
+    let (want, _, _) = cpu().render(scene);
+    let (got, frame) = gpu().render(scene).expect("GPU render");
+    let mask = hair_pixels(&gpu().visibility(&frame));
+    assert!(
+        got.pixels.iter().all(|p| p.is_finite()),
+        "{label}: non-finite pixel"
+    );
+    let e = relative_rmse(&got, &want, &mask);
+    let worst = worst_relative(&got, &want);
+    eprintln!(
+        "{label}: relative RMSE over {} hair pixels {e:.2e}, worst pixel {worst:.2e} of the brightest",
+        mask.iter().filter(|&&m| m).count(),
+    );
+    assert!(worst < 1e-2, "{label}: worst pixel {worst}");
+    e
+}
+
+#[test]
+fn single_scattering_under_the_sky_matches_the_cpu() {
+    let mut s = spec(150, "default", 40);
+    s.multiple = false;
+    let e = compare(&load(s), "sky, single");
+    assert!(e < 5e-3, "{e}");
+}
+
+#[test]
+fn dual_scattering_under_the_sky_matches_the_cpu() {
+    let scene = load(spec(150, "default", 40));
+    let e = compare(&scene, "sky, single + multiple");
+    assert!(e < 5e-3, "{e}");
+    // The bound is tight enough to catch a port that lost multiple scattering, which moves
+    // this image by 1.5 % (measured), three times the bound and 150 times the GPU's error.
+    let mut single = scene.clone();
+    single.spec.multiple = false;
+    let (with, prepared, _) = cpu().render(&scene);
+    let (without, _, _) = cpu().render(&single);
+    let mask = hair_pixels_of(&prepared);
+    let share = relative_rmse(&without, &with, &mask);
+    eprintln!("multiple scattering moves this image by {share:.3} (relative RMSE)");
+    assert!(share > 2.0 * 5e-3, "{share}");
+}
+
+/// Hair pixels from the CPU renderer's visibility buffer.
+fn hair_pixels_of(prepared: &cuticle_render::Prepared) -> Vec<bool> {
+    let cov = &prepared.coverage;
+    (0..cov.width * cov.height)
+        .map(|k| {
+            cov.pixel_samples(k % cov.width, k / cov.width)
+                .any(|s| cov.segment[s] != cuticle_render::frame::raster::EMPTY)
+        })
+        .collect()
+}
+
+#[test]
+fn real_map_matches_the_cpu() {
+    let Some(map) = shared_map("venice_sunset_1k.hdr") else {
+        return;
+    };
+    let e = compare(
+        &load(spec(150, &map, 20)),
+        "venice sunset, single + multiple",
+    );
+    assert!(e < 5e-3, "{e}");
+}
+
+#[test]
+fn eccentric_fiber_matches_the_cpu() {
+    let mut s = spec(150, "default", 40);
+    s.hair.eccentricity = 0.85;
+    let e = compare(&load(s), "sky, eccentric 0.85, single + multiple");
+    assert!(e < 5e-3, "{e}");
+}
+
+/// Zero-length segments, one-point strands and an empty groom render finite pixels equal to the
+/// CPU's within the worst-pixel bound (the empty groom: its background, read back in f32).
+#[test]
+fn degenerate_grooms_render() {
+    use cuticle_groom::{Groom, GroomParts};
+    use glam::Vec3;
+    let odd = Groom::from_parts(GroomParts {
+        positions: vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, -5.0),
+            Vec3::new(3.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 1.0),
+            Vec3::new(1.0, 1.0, 1.0),
+        ],
+        thickness: vec![0.05; 6],
+        strand_offsets: vec![0, 3, 4, 6],
+        ..GroomParts::default()
+    })
+    .unwrap();
+    let empty = Groom::from_parts(GroomParts {
+        strand_offsets: vec![0],
+        ..GroomParts::default()
+    })
+    .unwrap();
+    let base = load(spec(10, "default", 4));
+    for (name, groom) in [("odd", odd), ("empty", empty)] {
+        let mut s = base.spec.clone();
+        s.width = 48;
+        s.height = 32;
+        let scene = Scene::from_parts(s, groom, base.env.clone(), base.lights.clone());
+        let (want, _, _) = cpu().render(&scene);
+        let (got, _) = gpu().render(&scene).unwrap();
+        assert!(got.pixels.iter().all(|p| p.is_finite()), "{name}");
+        let worst = worst_relative(&got, &want);
+        assert!(worst < 1e-2, "{name}: {worst}");
+    }
+}

@@ -1,0 +1,127 @@
+//! Latency of the window's CPU path, without a window: the worker as `cuticle view` drives it,
+//! on the default scene (or `--strands N --width W --height H`), timing from a request to its
+//! first frame (the preview) and to its full-quality frame, for edits of the hair (absorption,
+//! then β_R: shading only) and for camera moves (preparation again). Medians of `--edits K`.
+//!
+//! `cargo bench -p cuticle-view --bench latency -- --edits 5`
+
+use cuticle_render::{Renderer, Scene, SceneSpec};
+use cuticle_view::look::Look;
+use cuticle_view::orbit;
+use cuticle_view::shading::cpu::CpuShading;
+use cuticle_view::worker::{Quality, Report, Request, Worker};
+use std::sync::mpsc::channel;
+use std::time::{Duration, Instant};
+
+fn arg(name: &str, default: usize) -> usize {
+    let args: Vec<String> = std::env::args().collect();
+    args.iter()
+        .position(|a| a == name)
+        .and_then(|i| args.get(i + 1))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Seconds from the request to its preview and to its full frame, and the preview's size.
+struct Latency {
+    preview: f64,
+    full: f64,
+    preview_size: (usize, usize),
+}
+
+fn main() {
+    let defaults = SceneSpec::default();
+    let spec = SceneSpec {
+        strands: arg("--strands", defaults.strands),
+        width: arg("--width", defaults.width),
+        height: arg("--height", defaults.height),
+        ..defaults
+    };
+    let edits = arg("--edits", 5).max(1);
+    let look = Look::from_scene(Scene::load(spec, None).expect("the default scene loads"));
+    let renderer = Renderer::new();
+    let (tx, rx) = channel::<()>();
+    let worker = Worker::start(
+        Box::new(CpuShading::new(renderer.clone())),
+        Box::new(CpuShading::new(renderer)),
+        move || {
+            let _ = tx.send(());
+        },
+    );
+    let mut id = 0;
+    let mut run = |look: &Look| -> Latency {
+        id += 1;
+        worker.submit(Request {
+            id,
+            scene: look.scene(),
+            revisions: look.revisions,
+            interacting: false,
+            issued: Instant::now(),
+        });
+        let mut preview = None;
+        loop {
+            let _ = rx.recv_timeout(Duration::from_secs(120));
+            for r in worker.reports() {
+                match r {
+                    Report::Frame(f) if f.id == id => match f.quality {
+                        Quality::Preview => {
+                            preview = Some((f.latency_s, (f.image.width, f.image.height)))
+                        }
+                        Quality::Full => {
+                            let (p, size) = preview.expect("the preview comes first");
+                            return Latency {
+                                preview: p,
+                                full: f.latency_s,
+                                preview_size: size,
+                            };
+                        }
+                    },
+                    Report::Failed { message, .. } => panic!("{message}"),
+                    _ => {}
+                }
+            }
+        }
+    };
+    let mut look = look;
+    let first = run(&look);
+    println!(
+        "first frame (tables kept, preparation of both qualities): preview {:.0} ms, full {:.0} ms",
+        1e3 * first.preview,
+        1e3 * first.full
+    );
+    let mut report = |name: &str, edit: &dyn Fn(&mut Look, usize)| {
+        let (mut p, mut f, mut size) = (Vec::new(), Vec::new(), (0, 0));
+        for k in 0..edits {
+            edit(&mut look, k);
+            let l = run(&look);
+            p.push(l.preview);
+            f.push(l.full);
+            size = l.preview_size;
+        }
+        println!(
+            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}), full-quality frame {:.0} ms",
+            1e3 * median(p),
+            size.0,
+            size.1,
+            1e3 * median(f)
+        );
+    };
+    report("absorption edit", &|l, k| {
+        l.all_strands = Some(cuticle_groom::Absorption::Melanin {
+            eumelanin: 0.5 + k as f32,
+            pheomelanin: 0.2,
+        })
+    });
+    report("beta_R edit", &|l, k| {
+        l.spec.hair.beta_r_deg = 5.0 + k as f64
+    });
+    report("camera orbit", &|l, _| {
+        let c = l.spec.camera.expect("a look has a camera");
+        l.spec.camera = Some(orbit::orbit(&c, 15.0, 0.0));
+    });
+}

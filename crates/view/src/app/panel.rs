@@ -1,0 +1,474 @@
+//! The controls, each live, each with its unit; the slider of every hair parameter spans the
+//! range the render crate validates ([`HairParams`]'s constants), nothing restated here.
+
+use crate::app::{AbsorptionEdit, Tool, ViewApp};
+use crate::presets::PRESETS;
+use cuticle_render::scene::hair::ParamRange;
+use cuticle_render::{HairParams, Method};
+use egui::{Slider, Ui};
+use std::sync::Arc;
+
+/// The slider span of a range: an open lower end starts a thousandth of the span inside.
+fn span(r: ParamRange) -> std::ops::RangeInclusive<f64> {
+    let lo = if r.min_closed {
+        r.min
+    } else {
+        r.min + (r.max - r.min) * 1e-3
+    };
+    lo..=r.max
+}
+
+/// A slider over a validated range, its label, unit and range in the tooltip.
+fn param(ui: &mut Ui, value: &mut f64, r: ParamRange, label: &str, unit: &str, what: &str) -> bool {
+    let mut s = Slider::new(value, span(r)).text(label);
+    if !unit.is_empty() {
+        s = s.suffix(format!(" {unit}"));
+    }
+    ui.add(s)
+        .on_hover_text(format!("{what}; {r} {unit}"))
+        .changed()
+}
+
+pub fn show(app: &mut ViewApp, ui: &mut Ui) {
+    egui::Panel::left("controls")
+        .resizable(false)
+        .exact_size(super::PANEL_WIDTH)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                if app.look.is_none() {
+                    ui.label("loading the scene…");
+                    return;
+                }
+                hair(app, ui);
+                absorption(app, ui);
+                scattering(app, ui);
+                lighting(app, ui);
+                groom(app, ui);
+                paint(app, ui);
+                files(app, ui);
+            });
+        });
+}
+
+fn hair(app: &mut ViewApp, ui: &mut Ui) {
+    let Some(look) = &mut app.look else { return };
+    let h = &mut look.spec.hair;
+    egui::CollapsingHeader::new("Fiber")
+        .default_open(true)
+        .show(ui, |ui| {
+            param(
+                ui,
+                &mut h.eta,
+                HairParams::ETA,
+                "η",
+                "",
+                "index of refraction",
+            );
+            param(
+                ui,
+                &mut h.alpha_r_deg,
+                HairParams::ALPHA_R_DEG,
+                "α_R",
+                "°",
+                "longitudinal shift of R (TT −α/2, TRT −3α/2)",
+            );
+            param(
+                ui,
+                &mut h.beta_r_deg,
+                HairParams::BETA_R_DEG,
+                "β_R",
+                "°",
+                "longitudinal width of R (TT β/2, TRT 2β)",
+            );
+            param(
+                ui,
+                &mut h.caustic_width_deg,
+                HairParams::CAUSTIC_WIDTH_DEG,
+                "w_c",
+                "°",
+                "azimuthal width of the TRT glints",
+            );
+            param(
+                ui,
+                &mut h.caustic_fade,
+                HairParams::CAUSTIC_FADE,
+                "caustic fade Δη'",
+                "",
+                "over which the glints fade once they merge",
+            );
+            param(
+                ui,
+                &mut h.eccentricity,
+                HairParams::ECCENTRICITY,
+                "eccentricity a",
+                "",
+                "cross-section eccentricity (Xu et al. 2011 eq. 24)",
+            );
+            param(
+                ui,
+                &mut h.d_b,
+                HairParams::D_B,
+                "d_b",
+                "",
+                "weight of local back scattering (Xu et al. 2011 eq. 4)",
+            );
+        });
+}
+
+/// Radio buttons for the way an absorption is entered, then its fields; true when changed.
+fn absorption_editor(
+    ui: &mut Ui,
+    prefix: &str,
+    edit: &mut AbsorptionEdit,
+    text: &mut String,
+    allow_own: bool,
+    errors: &mut Vec<String>,
+) -> bool {
+    let mut changed = false;
+    ui.horizontal_wrapped(|ui| {
+        if allow_own
+            && ui
+                .radio(*edit == AbsorptionEdit::Own, "own")
+                .on_hover_text("each strand's own absorption (the groom's)")
+                .clicked()
+        {
+            *edit = AbsorptionEdit::Own;
+            changed = true;
+        }
+        let sigma = crate::look::sigma_a_of_edit(edit);
+        if ui
+            .radio(
+                matches!(edit, AbsorptionEdit::SigmaA(_)),
+                format!("{prefix}σ_a"),
+            )
+            .clicked()
+        {
+            *edit = AbsorptionEdit::SigmaA(sigma.to_array());
+            *text = format_rgb(sigma.to_array());
+            changed = true;
+        }
+        if ui
+            .radio(
+                matches!(edit, AbsorptionEdit::Melanin(_)),
+                format!("{prefix}melanin"),
+            )
+            .clicked()
+        {
+            *edit = AbsorptionEdit::Melanin([1.3, 0.2]);
+            changed = true;
+        }
+        if ui
+            .radio(
+                matches!(edit, AbsorptionEdit::Colour(_)),
+                format!("{prefix}colour"),
+            )
+            .clicked()
+        {
+            *edit = AbsorptionEdit::Colour([0.5, 0.3, 0.15]);
+            changed = true;
+        }
+    });
+    match edit {
+        AbsorptionEdit::Own => {}
+        AbsorptionEdit::SigmaA(s) => {
+            if text.is_empty() {
+                *text = format_rgb(*s);
+            }
+            let r = ui
+                .add(egui::TextEdit::singleline(text).hint_text("r, g, b"))
+                .on_hover_text(format!(
+                    "σ_a per unit radius, one value or r, g, b, each in {}",
+                    HairParams::MU_A
+                ));
+            if r.lost_focus() || (r.changed() && ui.input(|i| i.key_pressed(egui::Key::Enter))) {
+                match parse_rgb(text) {
+                    Ok(v) if v != *s => {
+                        *s = v;
+                        changed = true;
+                    }
+                    Ok(_) => {}
+                    Err(e) => errors.push(e),
+                }
+            }
+        }
+        AbsorptionEdit::Melanin(m) => {
+            // The largest concentration whose σ_a stays inside the validated range.
+            let max = HairParams::MU_A.max / cuticle_fiber::absorption::EUMELANIN_SIGMA_A.z;
+            let r = 0.0..=max;
+            changed |= ui
+                .add(
+                    Slider::new(&mut m[0], r.clone())
+                        .logarithmic(true)
+                        .text(format!("{prefix}eumelanin")),
+                )
+                .on_hover_text("concentration (d'Eon et al. 2011's mapping)")
+                .changed();
+            changed |= ui
+                .add(
+                    Slider::new(&mut m[1], r)
+                        .logarithmic(true)
+                        .text(format!("{prefix}pheomelanin")),
+                )
+                .changed();
+        }
+        AbsorptionEdit::Colour(c) => {
+            ui.horizontal(|ui| {
+                changed |= ui.color_edit_button_rgb(c).changed();
+                ui.label("target colour (linear RGB; Chiang et al. 2016 eq. 9)");
+            });
+        }
+    }
+    changed
+}
+
+fn format_rgb(s: [f64; 3]) -> String {
+    format!("{}, {}, {}", s[0], s[1], s[2])
+}
+
+/// One number or three, comma separated (as the CLI's `--mu-a`).
+pub fn parse_rgb(text: &str) -> Result<[f64; 3], String> {
+    let v: Result<Vec<f64>, _> = text.split(',').map(|x| x.trim().parse::<f64>()).collect();
+    match v.as_deref() {
+        Ok([x]) => Ok([*x; 3]),
+        Ok([r, g, b]) => Ok([*r, *g, *b]),
+        _ => Err(format!("σ_a takes one number or r, g, b, not {text:?}")),
+    }
+}
+
+fn absorption(app: &mut ViewApp, ui: &mut Ui) {
+    egui::CollapsingHeader::new("Absorption of all strands")
+        .default_open(true)
+        .show(ui, |ui| {
+            let c = &mut app.controls;
+            let mut errors = Vec::new();
+            let mut changed = absorption_editor(
+                ui,
+                "",
+                &mut c.all_edit,
+                &mut c.sigma_text,
+                true,
+                &mut errors,
+            );
+            ui.horizontal_wrapped(|ui| {
+                for p in PRESETS {
+                    if ui.button(p.name).clicked() {
+                        c.all_edit =
+                            AbsorptionEdit::Melanin([p.eumelanin as f64, p.pheomelanin as f64]);
+                        changed = true;
+                    }
+                }
+            });
+            if changed && let Some(look) = &mut app.look {
+                look.all_strands = app.controls.all_edit.absorption();
+            }
+            errors.into_iter().for_each(|e| app.error(e));
+        });
+}
+
+fn scattering(app: &mut ViewApp, ui: &mut Ui) {
+    let Some(look) = &mut app.look else { return };
+    let spec = &mut look.spec;
+    egui::CollapsingHeader::new("Scattering and shadows")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.checkbox(&mut spec.multiple, "multiple scattering (dual scattering)");
+            ui.horizontal(|ui| {
+                ui.radio_value(&mut spec.method, Method::Srbf, "SRBF");
+                ui.radio_value(&mut spec.method, Method::Brute, "brute force (slow)");
+            });
+            ui.add(Slider::new(&mut spec.quadrature, 2..=16).text("quadrature m"))
+                .on_hover_text("segments of the linear quadrature (Xu et al. 2011 §4.2.2)");
+            ui.add(Slider::new(&mut spec.supersampling, 1..=4).text("subsamples per axis"));
+            let sh = &mut spec.shadows;
+            ui.add(Slider::new(&mut sh.density, 0.0..=4.0).text("shadow density"))
+                .on_hover_text("multiplies the optical depth (1 physical, 0 none)");
+            ui.add(
+                Slider::new(&mut sh.resolution, 16..=1024)
+                    .logarithmic(true)
+                    .text("shadow map texels"),
+            );
+            ui.add(Slider::new(&mut sh.cutoff, 0.0..=0.01).text("shadow cutoff"))
+                .on_hover_text("transmittance below which a light adds no direct light");
+        });
+}
+
+fn lighting(app: &mut ViewApp, ui: &mut Ui) {
+    let mut refit = None;
+    egui::CollapsingHeader::new("Environment")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.add(egui::TextEdit::singleline(&mut app.controls.env_text).desired_width(200.0))
+                    .on_hover_text("`default` (procedural sky) or an .hdr / .exr lat-long map");
+                if ui.button("load map").clicked() {
+                    refit = Some(false);
+                }
+            });
+            if let Some(look) = &mut app.look {
+                let before = look.spec.env_rotate_deg;
+                let r = ui.add(
+                    Slider::new(&mut look.spec.env_rotate_deg, -180.0..=180.0)
+                        .text("rotation")
+                        .suffix(" °"),
+                );
+                if r.changed() && look.spec.env_rotate_deg.is_finite() {
+                    rotate(look, look.spec.env_rotate_deg - before);
+                }
+                if r.drag_stopped() || (r.changed() && !r.dragged()) {
+                    refit = Some(true);
+                }
+            }
+            let r = ui.add(
+                Slider::new(&mut app.controls.lights, 1..=128)
+                    .logarithmic(true)
+                    .text("SRBF lights"),
+            );
+            if r.drag_stopped() || (r.changed() && !r.dragged()) {
+                refit = Some(true);
+            }
+            if let Some(look) = &app.look {
+                ui.label(match look.fit_error {
+                    Some(e) => {
+                        format!("{} lights, fit relative L2 error {e:.3}", look.lights.len())
+                    }
+                    None => format!("{} lights", look.lights.len()),
+                });
+            }
+        });
+    if let Some(same_map) = refit {
+        app.refit(same_map);
+    }
+}
+
+/// Turns the lights and the map by `delta_deg` about the up axis at once; the re-fit that
+/// follows replaces the lights with the fit of the turned map.
+fn rotate(look: &mut crate::look::Look, delta_deg: f64) {
+    let (s, c) = (delta_deg.to_radians() as f32).sin_cos();
+    let lights = look
+        .lights
+        .iter()
+        .map(|l| {
+            let d = l.direction;
+            let mut l = *l;
+            l.direction = glam::Vec3::new(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+            l
+        })
+        .collect();
+    look.lights = Arc::new(lights);
+    look.env = Arc::new(
+        (*look.env)
+            .clone()
+            .with_rotation(look.spec.env_rotate_deg.to_radians()),
+    );
+    look.revisions.lights += 1;
+}
+
+fn groom(app: &mut ViewApp, ui: &mut Ui) {
+    let mut load = false;
+    egui::CollapsingHeader::new("Groom")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::TextEdit::singleline(&mut app.controls.groom_text).desired_width(200.0),
+                )
+                .on_hover_text("a preset (straight, wavy, curly) or a .hair file");
+                load = ui.button("load groom").clicked();
+            });
+            ui.add(
+                egui::DragValue::new(&mut app.controls.strands)
+                    .range(1..=200_000)
+                    .prefix("strands of a preset: "),
+            );
+        });
+    if load {
+        app.load_groom();
+    }
+}
+
+fn paint(app: &mut ViewApp, ui: &mut Ui) {
+    egui::CollapsingHeader::new("Paint")
+        .default_open(true)
+        .show(ui, |ui| {
+            let c = &mut app.controls;
+            ui.horizontal(|ui| {
+                ui.radio_value(&mut c.tool, Tool::Camera, "camera")
+                    .on_hover_text("drag: orbit; right/middle drag: pan; scroll: zoom");
+                ui.radio_value(&mut c.tool, Tool::Paint, "brush")
+                    .on_hover_text("drag: paint; right drag: orbit; scroll: zoom");
+            });
+            let b = &mut c.brush;
+            ui.add(
+                Slider::new(&mut b.radius_px, 1.0..=200.0)
+                    .logarithmic(true)
+                    .text("radius")
+                    .suffix(" px"),
+            );
+            ui.add(Slider::new(&mut b.strength, 0.0..=1.0).text("strength"));
+            ui.add(Slider::new(&mut b.soft_edge, 0.0..=1.0).text("soft edge"));
+            let mut errors = Vec::new();
+            absorption_editor(
+                ui,
+                "brush ",
+                &mut c.brush_edit,
+                &mut c.brush_sigma_text,
+                false,
+                &mut errors,
+            );
+            ui.horizontal_wrapped(|ui| {
+                for p in PRESETS {
+                    if ui.small_button(p.name).clicked() {
+                        c.brush_edit =
+                            AbsorptionEdit::Melanin([p.eumelanin as f64, p.pheomelanin as f64]);
+                    }
+                }
+            });
+            errors.into_iter().for_each(|e| app.error(e));
+            ui.horizontal(|ui| {
+                if ui
+                    .add_enabled(app.history.can_undo(), egui::Button::new("undo"))
+                    .clicked()
+                {
+                    app.undo();
+                }
+                if ui
+                    .add_enabled(app.history.can_redo(), egui::Button::new("redo"))
+                    .clicked()
+                {
+                    app.redo();
+                }
+                if ui.button("clear paint").clicked() {
+                    app.clear_paint();
+                }
+            });
+        });
+}
+
+fn files(app: &mut ViewApp, ui: &mut Ui) {
+    egui::CollapsingHeader::new("Files")
+        .default_open(true)
+        .show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label("folder");
+                ui.add(egui::TextEdit::singleline(&mut app.controls.out_text).desired_width(200.0));
+            });
+            ui.horizontal(|ui| {
+                if ui
+                    .button("save look")
+                    .on_hover_text(
+                        "groom.hair, groom.absorption.json and scene.toml into FOLDER/look",
+                    )
+                    .clicked()
+                {
+                    app.save();
+                }
+                if ui
+                    .button("screenshot")
+                    .on_hover_text("the full-quality frame as PNG and EXR into FOLDER")
+                    .clicked()
+                {
+                    app.screenshot();
+                }
+            });
+        });
+}

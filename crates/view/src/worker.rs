@@ -1,0 +1,338 @@
+//! The render worker: one thread that turns the latest request into frames, so the window never
+//! waits on the renderer.
+//!
+//! - A request replaces any that is waiting (stale edits are never rendered) and cancels a
+//!   full-quality frame in progress.
+//! - Each request is shown first as a preview ([`Quality::Preview`]: fewer pixels, one subsample
+//!   each, sized so that shading takes about [`PREVIEW_BUDGET_S`]); a request made while input
+//!   moves stops there, any other is refined to the full image when nothing newer waits.
+//! - Each quality keeps its own preparation and re-runs it only when the camera, image size,
+//!   groom geometry, lights or shadow settings change; any other edit re-runs shading only.
+
+use crate::look::Revisions;
+use crate::shading::{Shading, StrandBuffer};
+use cuticle_render::{Camera, Image, Method, Scene, ShadowOptions};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::{Arc, Condvar, Mutex};
+use std::thread::JoinHandle;
+use std::time::Instant;
+
+/// Shading seconds a preview aims at (the first updated frame after an edit).
+pub const PREVIEW_BUDGET_S: f64 = 0.05;
+/// Largest reduction of the preview along each axis.
+pub const MAX_PREVIEW_SCALE: usize = 8;
+
+/// How a frame was made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quality {
+    /// Reduced resolution, one subsample per pixel.
+    Preview,
+    /// The scene's own resolution and supersampling.
+    Full,
+}
+
+/// What the window asks for.
+pub struct Request {
+    /// Increases with every request.
+    pub id: u64,
+    pub scene: Scene,
+    pub revisions: Revisions,
+    /// Input is still moving: a preview is enough.
+    pub interacting: bool,
+    pub issued: Instant,
+}
+
+/// A finished frame.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    /// The request it answers.
+    pub id: u64,
+    pub quality: Quality,
+    pub image: Image,
+    pub strands: Arc<StrandBuffer>,
+    /// Seconds of the preparation it needed (0 when the kept one served).
+    pub prepare_s: f64,
+    /// Seconds of shading and resolve.
+    pub shade_s: f64,
+    /// Seconds from the request to this frame.
+    pub latency_s: f64,
+    /// Which back end shaded it.
+    pub backend: String,
+}
+
+/// What the worker reports.
+pub enum Report {
+    Frame(Box<Frame>),
+    /// A frame could not be made (the message of a panic in the renderer).
+    Failed {
+        id: u64,
+        message: String,
+    },
+}
+
+/// What a preparation depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct PrepareKey {
+    revisions: Revisions,
+    camera: Option<Camera>,
+    width: usize,
+    height: usize,
+    supersampling: usize,
+    shadows: ShadowOptions,
+    method: Method,
+    brute_grid: usize,
+}
+
+impl PrepareKey {
+    fn of(scene: &Scene, revisions: Revisions) -> Self {
+        let s = &scene.spec;
+        Self {
+            revisions,
+            camera: Some(scene.camera),
+            width: s.width,
+            height: s.height,
+            supersampling: s.supersampling,
+            shadows: s.shadows,
+            method: s.method,
+            brute_grid: s.brute_grid,
+        }
+    }
+}
+
+/// One quality's back end and what it last prepared.
+struct Slot {
+    shading: Box<dyn Shading>,
+    key: Option<PrepareKey>,
+    strands: Arc<StrandBuffer>,
+}
+
+impl Slot {
+    fn new(shading: Box<dyn Shading>) -> Self {
+        Self {
+            shading,
+            key: None,
+            strands: Arc::default(),
+        }
+    }
+
+    /// Prepares `scene` unless the kept preparation serves; the seconds it took.
+    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> f64 {
+        let key = PrepareKey::of(scene, revisions);
+        if self.key.as_ref() == Some(&key) {
+            return 0.0;
+        }
+        let start = Instant::now();
+        self.shading.prepare(scene);
+        self.strands = Arc::new(self.shading.strands());
+        self.key = Some(key);
+        start.elapsed().as_secs_f64()
+    }
+}
+
+/// The scene at preview quality: `scale` times fewer pixels along each axis, one subsample.
+pub fn preview_scene(scene: &Scene, scale: usize) -> Scene {
+    let mut s = scene.clone();
+    s.spec.width = scene.spec.width.div_ceil(scale).max(1);
+    s.spec.height = scene.spec.height.div_ceil(scale).max(1);
+    s.spec.supersampling = 1;
+    s
+}
+
+struct Mailbox {
+    pending: Mutex<Option<Request>>,
+    wake: Condvar,
+    cancel: AtomicBool,
+    stop: AtomicBool,
+}
+
+/// The handle the window keeps.
+pub struct Worker {
+    mailbox: Arc<Mailbox>,
+    reports: Receiver<Report>,
+    thread: Option<JoinHandle<()>>,
+}
+
+impl Worker {
+    /// Starts the thread with one back end per quality; `notify` is called after each report
+    /// (the window's repaint).
+    pub fn start(
+        preview: Box<dyn Shading>,
+        full: Box<dyn Shading>,
+        notify: impl Fn() + Send + 'static,
+    ) -> Self {
+        let mailbox = Arc::new(Mailbox {
+            pending: Mutex::new(None),
+            wake: Condvar::new(),
+            cancel: AtomicBool::new(false),
+            stop: AtomicBool::new(false),
+        });
+        let (tx, reports) = channel();
+        let m = mailbox.clone();
+        let thread = std::thread::Builder::new()
+            .name("cuticle-view render".into())
+            .spawn(move || {
+                Loop {
+                    mailbox: m,
+                    reports: tx,
+                    notify: Box::new(notify),
+                    preview: Slot::new(preview),
+                    full: Slot::new(full),
+                    scale: 2,
+                }
+                .run()
+            })
+            .ok();
+        Self {
+            mailbox,
+            reports,
+            thread,
+        }
+    }
+
+    /// Replaces the waiting request and cancels a full frame in progress.
+    pub fn submit(&self, request: Request) {
+        if let Ok(mut pending) = self.mailbox.pending.lock() {
+            *pending = Some(request);
+            self.mailbox.cancel.store(true, Ordering::SeqCst);
+            self.mailbox.wake.notify_one();
+        }
+    }
+
+    /// Reports since the last call, oldest first.
+    pub fn reports(&self) -> Vec<Report> {
+        self.reports.try_iter().collect()
+    }
+
+    /// Whether the thread is running.
+    pub fn alive(&self) -> bool {
+        self.thread.as_ref().is_some_and(|t| !t.is_finished())
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        self.mailbox.stop.store(true, Ordering::SeqCst);
+        self.mailbox.cancel.store(true, Ordering::SeqCst);
+        self.mailbox.wake.notify_one();
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+struct Loop {
+    mailbox: Arc<Mailbox>,
+    reports: Sender<Report>,
+    notify: Box<dyn Fn() + Send>,
+    preview: Slot,
+    full: Slot,
+    /// Current preview reduction along each axis.
+    scale: usize,
+}
+
+impl Loop {
+    fn run(mut self) {
+        while let Some(request) = self.next() {
+            let id = request.id;
+            let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                self.serve(&request);
+            }));
+            if let Err(panic) = outcome {
+                let message = panic
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_else(|| "the renderer failed".into());
+                self.preview.key = None;
+                self.full.key = None;
+                self.send(Report::Failed { id, message });
+            }
+        }
+    }
+
+    /// Waits for the next request (None once stopped); clears the cancel flag as it takes one.
+    fn next(&self) -> Option<Request> {
+        let mut pending = self.mailbox.pending.lock().ok()?;
+        loop {
+            if self.mailbox.stop.load(Ordering::SeqCst) {
+                return None;
+            }
+            if let Some(r) = pending.take() {
+                self.mailbox.cancel.store(false, Ordering::SeqCst);
+                return Some(r);
+            }
+            pending = self.mailbox.wake.wait(pending).ok()?;
+        }
+    }
+
+    fn newer_waiting(&self) -> bool {
+        self.mailbox.pending.lock().map_or(true, |p| p.is_some())
+    }
+
+    fn send(&self, report: Report) {
+        let _ = self.reports.send(report);
+        (self.notify)();
+    }
+
+    /// A preview of the request, then its full frame unless input moves or a newer one waits.
+    fn serve(&mut self, request: &Request) {
+        let preview = preview_scene(&request.scene, self.scale);
+        let never = AtomicBool::new(false);
+        if let Some(frame) = render(
+            &mut self.preview,
+            &preview,
+            request,
+            Quality::Preview,
+            &never,
+        ) {
+            self.adapt_scale(frame.shade_s);
+            self.send(Report::Frame(Box::new(frame)));
+        }
+        if request.interacting || self.newer_waiting() {
+            return;
+        }
+        let cancel = &self.mailbox.cancel;
+        if let Some(frame) = render(
+            &mut self.full,
+            &request.scene,
+            request,
+            Quality::Full,
+            cancel,
+        ) {
+            self.send(Report::Frame(Box::new(frame)));
+        }
+    }
+
+    /// Keeps the preview's shading near its budget by changing its size.
+    fn adapt_scale(&mut self, shade_s: f64) {
+        if shade_s > 1.6 * PREVIEW_BUDGET_S && self.scale < MAX_PREVIEW_SCALE {
+            self.scale += 1;
+        } else if shade_s < 0.3 * PREVIEW_BUDGET_S && self.scale > 1 {
+            self.scale -= 1;
+        }
+    }
+}
+
+/// One frame of `scene` by `slot`'s back end.
+fn render(
+    slot: &mut Slot,
+    scene: &Scene,
+    request: &Request,
+    quality: Quality,
+    cancel: &AtomicBool,
+) -> Option<Frame> {
+    let prepare_s = slot.prepare(scene, request.revisions);
+    let start = Instant::now();
+    let image = slot.shading.shade(scene, cancel)?;
+    Some(Frame {
+        id: request.id,
+        quality,
+        image,
+        strands: slot.strands.clone(),
+        prepare_s,
+        shade_s: start.elapsed().as_secs_f64(),
+        latency_s: request.issued.elapsed().as_secs_f64(),
+        backend: slot.shading.backend(),
+    })
+}

@@ -1,0 +1,430 @@
+//! The window driven headlessly (egui_kittest on its wgpu renderer; lavapipe where no GPU is):
+//! a small scene (300 strands, 160 × 120, 8 SRBF lights) so that each test runs in seconds.
+
+use cuticle_render::{Image, SceneSpec};
+use cuticle_view::ViewOptions;
+use cuticle_view::app::{Outcome, ViewApp};
+use cuticle_view::shading::StrandBuffer;
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+const WINDOW: egui::Vec2 = egui::vec2(560.0, 640.0);
+
+fn spec() -> SceneSpec {
+    let mut s = SceneSpec {
+        strands: 300,
+        width: 160,
+        height: 120,
+        lights: 8,
+        supersampling: 2,
+        ..SceneSpec::default()
+    };
+    s.shadows.resolution = 64;
+    s
+}
+
+fn open(spec: SceneSpec, out: &Path) -> Harness<'static, Option<ViewApp>> {
+    let options = ViewOptions {
+        spec,
+        out: out.to_path_buf(),
+        ..ViewOptions::default()
+    };
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .with_accessibility_check(false)
+        .wgpu()
+        .build_ui_state(
+            move |ui, app: &mut Option<ViewApp>| {
+                app.get_or_insert_with(|| {
+                    ViewApp::new(ui.ctx(), options.clone(), Outcome::default())
+                })
+                .show_ui(ui)
+            },
+            None,
+        );
+    settle(&mut h);
+    h
+}
+
+fn app<'a>(h: &'a Harness<'static, Option<ViewApp>>) -> &'a ViewApp {
+    h.state()
+        .as_ref()
+        .expect("the app is built on the first frame")
+}
+
+fn app_mut<'a>(h: &'a mut Harness<'static, Option<ViewApp>>) -> &'a mut ViewApp {
+    h.state_mut()
+        .as_mut()
+        .expect("the app is built on the first frame")
+}
+
+/// Steps the UI until the full frame of the current look is on screen.
+fn settle(h: &mut Harness<'static, Option<ViewApp>>) {
+    let start = Instant::now();
+    loop {
+        h.step();
+        if app(h).settled() {
+            h.step();
+            return;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(300),
+            "the window did not settle; errors: {:?}",
+            app(h).errors
+        );
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+/// The full-quality frame on screen and its visibility.
+fn frame(h: &Harness<'static, Option<ViewApp>>) -> (Image, StrandBuffer) {
+    let f = app(h).full.as_ref().expect("a full frame");
+    (f.image.clone(), (*f.strands).clone())
+}
+
+/// Pixels none of whose subsamples show hair, and pixels all of whose subsamples do.
+fn background_and_hair(b: &StrandBuffer) -> (Vec<usize>, Vec<usize>) {
+    let (mut bg, mut hair) = (Vec::new(), Vec::new());
+    for y in 0..b.height {
+        for x in 0..b.width {
+            let strands: Vec<_> = (0..b.ss * b.ss)
+                .map(|k| b.at(x * b.ss + k % b.ss, y * b.ss + k / b.ss))
+                .collect();
+            if strands.iter().all(Option::is_none) {
+                bg.push(y * b.width + x);
+            } else if strands.iter().all(Option::is_some) {
+                hair.push(y * b.width + x);
+            }
+        }
+    }
+    (bg, hair)
+}
+
+fn luminance(p: glam::DVec3) -> f64 {
+    0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z
+}
+
+fn mean_luminance(img: &Image, pixels: &[usize]) -> f64 {
+    pixels
+        .iter()
+        .map(|&k| luminance(img.pixels[k]))
+        .sum::<f64>()
+        / pixels.len().max(1) as f64
+}
+
+/// Clicks the widget labelled `label` (through AccessKit: it may be scrolled out of view).
+fn click(h: &mut Harness<'static, Option<ViewApp>>, label: &str) {
+    h.get_by_label(label).click_accesskit();
+    h.step();
+}
+
+fn set_slider(h: &mut Harness<'static, Option<ViewApp>>, label: &str, value: f64) {
+    h.get_by_role_and_label(egui::accesskit::Role::Slider, label)
+        .set_value_accesskit(value);
+    h.step();
+    settle(h);
+}
+
+/// The window's pixels inside the image's rectangle.
+fn screen_image(h: &mut Harness<'static, Option<ViewApp>>) -> image::RgbaImage {
+    let rect = app(h).image_rect.expect("the image is laid out");
+    let shot = h.render().expect("the wgpu renderer draws the window");
+    let (x, y) = (rect.min.x.round() as u32, rect.min.y.round() as u32);
+    image::imageops::crop_imm(
+        &shot,
+        x,
+        y,
+        rect.width().round() as u32,
+        rect.height().round() as u32,
+    )
+    .to_image()
+}
+
+/// The window opens on the default scene (the default groom and sky at test size) and shows
+/// it: the image area matches a stored snapshot (mean difference ≤ 1 level of 255 per channel,
+/// at most 0.5 % of the pixels off by more than 16 levels), and it is the tone-mapped frame the
+/// renderer made (every channel within 2 levels: texture filtering and sRGB rounding).
+#[test]
+fn opens_on_the_default_scene_and_matches_its_snapshot() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    let (img, strands) = frame(&h);
+    let (bg, hair) = background_and_hair(&strands);
+    assert!(
+        hair.len() > 500 && bg.len() > 500,
+        "hair {} background {}",
+        hair.len(),
+        bg.len()
+    );
+    let screen = screen_image(&mut h);
+    assert_eq!(
+        (screen.width() as usize, screen.height() as usize),
+        (img.width, img.height)
+    );
+    let tone = cuticle_light::ToneMap::for_map(&app(&h).look.as_ref().unwrap().env);
+    for (k, p) in img.pixels.iter().enumerate() {
+        let want = tone.apply(p.as_vec3());
+        let got = screen
+            .get_pixel((k % img.width) as u32, (k / img.width) as u32)
+            .0;
+        for c in 0..3 {
+            assert!(
+                (want[c] as i32 - got[c] as i32).abs() <= 2,
+                "pixel {k} channel {c}: frame {want:?} screen {got:?}"
+            );
+        }
+    }
+    let stored = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots/default_scene.png");
+    if std::env::var_os("UPDATE_SNAPSHOTS").is_some() {
+        screen.save(&stored).unwrap();
+    }
+    let want = image::open(&stored)
+        .expect("tests/snapshots/default_scene.png (UPDATE_SNAPSHOTS=1 writes it)")
+        .to_rgba8();
+    assert_eq!(want.dimensions(), screen.dimensions());
+    let (mut sum, mut far, n) = (0.0, 0usize, (want.width() * want.height()) as f64);
+    for (a, b) in want.pixels().zip(screen.pixels()) {
+        let d: Vec<i32> = (0..3)
+            .map(|c| (a.0[c] as i32 - b.0[c] as i32).abs())
+            .collect();
+        sum += d.iter().sum::<i32>() as f64 / 3.0;
+        far += usize::from(d.iter().any(|&x| x > 16));
+    }
+    assert!(sum / n <= 1.0, "mean difference {} levels", sum / n);
+    assert!(
+        far as f64 <= 0.005 * n,
+        "{far} pixels off by more than 16 levels"
+    );
+}
+
+/// More eumelanin darkens the hair; more β_R widens the highlight (more hair pixels above half
+/// the brightest on black hair, single scattering only); the background stays bit for bit.
+#[test]
+fn sliders_change_the_image_as_the_parameter_should() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    click(&mut h, "melanin");
+    h.step();
+    settle(&mut h);
+    set_slider(&mut h, "eumelanin", 0.5);
+    let (light, strands) = frame(&h);
+    set_slider(&mut h, "eumelanin", 4.0);
+    let (dark, _) = frame(&h);
+    let (bg, hair) = background_and_hair(&strands);
+    let (l, d) = (mean_luminance(&light, &hair), mean_luminance(&dark, &hair));
+    assert!(
+        d < 0.7 * l,
+        "hair luminance {l} → {d} with 8× the eumelanin"
+    );
+    for &k in &bg {
+        assert_eq!(light.pixels[k], dark.pixels[k], "background pixel {k}");
+    }
+
+    click(&mut h, "multiple scattering (dual scattering)");
+    h.step();
+    set_slider(&mut h, "eumelanin", 8.0);
+    let lit = |img: &Image| {
+        let peak = hair
+            .iter()
+            .map(|&k| luminance(img.pixels[k]))
+            .fold(0.0, f64::max);
+        hair.iter()
+            .filter(|&&k| luminance(img.pixels[k]) > 0.5 * peak)
+            .count()
+    };
+    set_slider(&mut h, "β_R", 3.0);
+    let (narrow, _) = frame(&h);
+    set_slider(&mut h, "β_R", 12.0);
+    let (wide, _) = frame(&h);
+    let (n, w) = (lit(&narrow), lit(&wide));
+    assert!(
+        w as f64 > 1.3 * n as f64,
+        "pixels above half the peak: β_R 3° {n}, 12° {w}"
+    );
+    for &k in &bg {
+        assert_eq!(narrow.pixels[k], wide.pixels[k], "background pixel {k}");
+    }
+}
+
+/// Drags the brush from `a` to `b` (window points) in a few steps.
+fn stroke(h: &mut Harness<'static, Option<ViewApp>>, a: egui::Pos2, b: egui::Pos2) {
+    let press = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::NONE,
+    };
+    h.event(egui::Event::PointerMoved(a));
+    h.step();
+    h.event(press(a, true));
+    h.step();
+    for i in 1..=8 {
+        let p = a + (b - a) * (i as f32 / 8.0);
+        h.event(egui::Event::PointerMoved(p));
+        h.step();
+    }
+    h.event(press(b, false));
+    h.step();
+    settle(h);
+}
+
+/// A stroke across part of the hair recolours the strands under it and no others (pixels
+/// showing no painted strand keep their bits); undo gives back the image exactly and redo the
+/// painted one; the look saved and reopened renders the same image.
+#[test]
+fn paint_undo_and_save_reopen() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    let (before, strands) = frame(&h);
+    click(&mut h, "brush");
+    h.step();
+    let rect = app(&h).image_rect.unwrap();
+    let (_, hair) = background_and_hair(&strands);
+    // Start on a hair pixel near the middle and sweep 30 px across.
+    let k = hair[hair.len() / 2];
+    let start = rect.min
+        + egui::vec2(
+            (k % strands.width) as f32 + 0.5,
+            (k / strands.width) as f32 + 0.5,
+        );
+    stroke(&mut h, start, start + egui::vec2(30.0, 0.0));
+    let painted: BTreeSet<u32> = {
+        let look = app(&h).look.as_ref().unwrap();
+        (0..look.paint.len())
+            .filter(|&s| look.paint[s].is_some())
+            .map(|s| s as u32)
+            .collect()
+    };
+    let total = app(&h).look.as_ref().unwrap().paint.len();
+    assert!(
+        !painted.is_empty() && painted.len() < total / 2,
+        "{} of {total} strands painted; tool {:?}, errors {:?}",
+        painted.len(),
+        app(&h).controls.tool,
+        app(&h).errors
+    );
+    let (after, _) = frame(&h);
+    let (mut touched, mut changed) = (0, 0);
+    for y in 0..strands.height {
+        for x in 0..strands.width {
+            let k = y * strands.width + x;
+            let shows_paint = (0..strands.ss * strands.ss).any(|i| {
+                strands
+                    .at(
+                        x * strands.ss + i % strands.ss,
+                        y * strands.ss + i / strands.ss,
+                    )
+                    .is_some_and(|s| painted.contains(&s))
+            });
+            if shows_paint {
+                touched += 1;
+                changed += usize::from(before.pixels[k] != after.pixels[k]);
+            } else {
+                assert_eq!(
+                    before.pixels[k], after.pixels[k],
+                    "pixel ({x}, {y}) shows no painted strand"
+                );
+            }
+        }
+    }
+    assert!(
+        changed as f64 > 0.9 * touched as f64,
+        "{changed} of {touched} pixels of painted strands changed"
+    );
+
+    click(&mut h, "undo");
+    h.step();
+    settle(&mut h);
+    assert!(frame(&h).0 == before, "undo restores the image exactly");
+    click(&mut h, "redo");
+    h.step();
+    settle(&mut h);
+    assert!(frame(&h).0 == after, "redo gives the painted image back");
+
+    click(&mut h, "save look");
+    h.step();
+    assert!(app(&h).errors.is_empty(), "{:?}", app(&h).errors);
+    let scene = dir.path().join("look/scene.toml");
+    let spec = SceneSpec::from_toml_file(&scene).expect("the saved scene reads");
+    let reopened = open(spec, &dir.path().join("again"));
+    let (again, _) = frame(&reopened);
+    assert_eq!((again.width, again.height), (after.width, after.height));
+    let worst = again
+        .pixels
+        .iter()
+        .zip(&after.pixels)
+        .map(|(a, b)| (*a - *b).abs().max_element() / b.max_element().max(1e-3))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-6, "reopened image differs by {worst} relative");
+}
+
+/// Bad input — a NaN typed as σ_a, a missing and a corrupt `.hair`, a missing and a corrupt
+/// map — shows an error in the window and leaves the scene and its image as they were.
+#[test]
+fn bad_input_shows_an_error_and_keeps_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    // σ_a typed for all strands: first the field, at the default σ_a.
+    click(&mut h, "σ_a");
+    h.step();
+    settle(&mut h);
+    let (before, _) = frame(&h);
+    let all_strands = app(&h).look.as_ref().unwrap().all_strands;
+    let strands = app(&h).look.as_ref().unwrap().groom.strand_count();
+    let lights = app(&h).look.as_ref().unwrap().lights.clone();
+
+    let garbage = dir.path().join("garbage");
+    std::fs::write(&garbage, b"HAIR this is not a hair file at all").unwrap();
+    type Act<'a> = &'a dyn Fn(&mut Harness<'static, Option<ViewApp>>);
+    let cases: [(&str, &str, Act); 5] = [
+        ("NaN σ_a", "mu_a = NaN", &|h| {
+            app_mut(h).controls.sigma_text = "NaN".into();
+            h.get_by_label_contains("r, g, b").focus();
+            h.step();
+            h.key_press(egui::Key::Enter);
+            h.step();
+        }),
+        ("missing .hair", "groom.hair", &|h| {
+            app_mut(h).controls.groom_text = "/no/such/groom.hair".into();
+            h.step();
+            click(h, "load groom");
+        }),
+        ("corrupt .hair", "garbage", &|h| {
+            app_mut(h).controls.groom_text = garbage.display().to_string();
+            click(h, "load groom");
+        }),
+        ("missing map", "map.hdr", &|h| {
+            app_mut(h).controls.env_text = "/no/such/map.hdr".into();
+            click(h, "load map");
+        }),
+        ("corrupt map", "garbage.hdr", &|h| {
+            let bad = garbage.with_extension("hdr");
+            std::fs::write(&bad, b"#?RADIANCE\nnonsense").unwrap();
+            app_mut(h).controls.env_text = bad.display().to_string();
+            click(h, "load map");
+        }),
+    ];
+    for (what, names, act) in cases {
+        app_mut(&mut h).errors.clear();
+        act(&mut h);
+        h.step();
+        settle(&mut h);
+        let errors = &app(&h).errors;
+        assert!(
+            errors.len() == 1 && errors[0].contains(names),
+            "{what}: one error naming {names:?} expected, got {errors:?}"
+        );
+        assert!(
+            h.query_by_label_contains("error:").is_some(),
+            "{what}: the error is not in the window"
+        );
+        let look = app(&h).look.as_ref().unwrap();
+        assert_eq!(look.groom.strand_count(), strands, "{what}: groom replaced");
+        assert_eq!(look.lights, lights, "{what}: lights replaced");
+        assert_eq!(look.all_strands, all_strands, "{what}: absorption replaced");
+        assert!(frame(&h).0 == before, "{what}: image changed");
+    }
+}
