@@ -13,6 +13,7 @@ use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
 use crate::special::{GaussLegendre, normal_pdf};
 use crate::tilted_attenuation::{tilted_attenuation, tilted_reflectance};
+use crate::tilted_mirror::tilted_mirror_offset;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -114,6 +115,9 @@ impl AzimuthalScattering {
     /// R without azimuthal roughness (d'Eon et al. 2014 §2.3): the single root h = −sin(φ/2) of
     /// Φ(0, h) = φ, so N_R = ¼ cos(φ/2) A(0, h).
     fn eval_r(&self, theta_i: f64, phi: f64, weighting: Weighting) -> DVec3 {
+        if self.scale_tilt != 0.0 {
+            return self.eval_r_tilted(theta_i, phi, weighting);
+        }
         let phi = crate::frame::wrap_pi(phi);
         let h = -(0.5 * phi).sin();
         let jac = 0.25 * (0.5 * phi).cos();
@@ -122,6 +126,26 @@ impl AzimuthalScattering {
             Weighting::Attenuation => DVec3::splat(jac * self.reflectance(theta_i, h)),
             Weighting::Selection => jac * weight(&self.attenuation(theta_i, h), 0, weighting),
         }
+    }
+
+    /// R through tilted scales: the offset whose exact mirror leaves at φ (or at φ ± 2π, where
+    /// grazing mirrors run past the back of the fiber), N_R = ½ |dh/dφ| A(0, h)
+    /// ([`crate::tilted_mirror`]; ¼ cos(φ/2) A(0, h) untilted).
+    fn eval_r_tilted(&self, theta_i: f64, phi: f64, weighting: Weighting) -> DVec3 {
+        let phi = crate::frame::wrap_pi(phi);
+        [-2.0 * PI, 0.0, 2.0 * PI]
+            .iter()
+            .filter_map(|k| tilted_mirror_offset(theta_i, self.scale_tilt, phi + k))
+            .map(|(h, dh)| {
+                let jac = 0.5 * dh;
+                match weighting {
+                    Weighting::Attenuation => DVec3::splat(jac * self.reflectance(theta_i, h)),
+                    Weighting::Selection => {
+                        jac * weight(&self.attenuation(theta_i, h), 0, weighting)
+                    }
+                }
+            })
+            .sum()
     }
 
     /// The p ≥ 4 remainder, spread uniformly in φ: (½ ∫ A_rest dh) / 2π.

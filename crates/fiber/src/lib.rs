@@ -38,6 +38,7 @@ pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
 pub mod tilted_attenuation;
+pub mod tilted_mirror;
 
 pub use chiang2016::Chiang2016;
 pub use deon2011::DEon2011;

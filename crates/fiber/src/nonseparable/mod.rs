@@ -18,6 +18,9 @@
 //!   trapped by total internal reflection removed. The paper sends all of A_TT to a cone at
 //!   the pole instead and keeps the whole budget (its TT energy at θ_i = 1.1, α = 2° is twice
 //!   the simulation's).
+//! - R leaves by the exact mirror off the tilted scale ([`crate::tilted_mirror`]): its azimuth
+//!   as well as its inclination, where the paper keeps Bravais' φ = −2γ_i, which at grazing
+//!   incidence puts the last reflections before the scales cut R off half a radian short.
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
@@ -41,10 +44,20 @@ use crate::longitudinal::LongitudinalLobe;
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
+use crate::tilted_mirror::{tilted_mirror, tilted_mirror_offset};
 pub use cones::{
     cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, trt_exit, tt_exit, tt_offset,
     variance_r, variance_trt, variance_tt,
 };
+
+/// The offset whose tilted mirror leaves at φ (or φ ± 2π), if any.
+fn r_offset(theta_i: f64, alpha: f64, phi: f64) -> Option<f64> {
+    let phi = wrap_pi(phi);
+    [0.0, -2.0 * std::f64::consts::PI, 2.0 * std::f64::consts::PI]
+        .iter()
+        .find_map(|k| tilted_mirror_offset(theta_i, alpha, phi + k))
+        .map(|(h, _)| h)
+}
 
 /// Fixed-point iterations per sample unless set otherwise (d'Eon et al. 2014 Figure 7 uses 6).
 pub const DEFAULT_ITERATIONS: u32 = 6;
@@ -141,7 +154,14 @@ impl NonSeparable {
         let theta_d = -theta_i;
         let tilted = self.scales == Scales::Tilted;
         match p {
-            0 => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
+            0 => match tilted.then(|| r_offset(theta_i, alpha, phi)).flatten() {
+                // The exact mirror at the offset that reflects to φ; v_R = 2β²(1 − h²) (eq. 6).
+                Some(h) => LongitudinalLobe::new(
+                    2.0 * beta * beta * (1.0 - h * h),
+                    tilted_mirror(theta_i, alpha, h).theta,
+                ),
+                None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
+            },
             1 => {
                 let h = tt_offset(phi, eta_perp(eta, theta_d));
                 let cone = if tilted {
@@ -226,7 +246,10 @@ impl FiberModel for NonSeparable {
         let (theta_o, phi, iterations) = match p {
             1 | 2 => self.sample_fixed_point(wi, p, h, u_phi, [u[2], u[3]]),
             0 => {
-                let phi = azimuthal_deflection(0, h, self.params.eta);
+                let phi = match self.scales {
+                    Scales::Tilted => tilted_mirror(wi.theta, self.params.alpha, h).phi,
+                    Scales::Paper => azimuthal_deflection(0, h, self.params.eta),
+                };
                 (
                     self.longitudinal(0, wi.theta, wrap_pi(phi))
                         .sample(u[2], u[3]),
