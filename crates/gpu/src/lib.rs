@@ -6,9 +6,10 @@
 //!    normalisation, the circular-Gaussian width table) uploaded once by [`GpuRenderer::new`];
 //!    the lobe table and back-scattering tables uploaded when a hair parameter rebuilds them
 //!    ([`tables`]);
-//! 2. drawing and 3. shadows: the CPU renderer's visibility buffer and deep opacity maps
-//!    ([`cuticle_render::Renderer::prepare`]), uploaded by [`GpuRenderer::prepare`] — not yet on
-//!    the GPU;
+//! 2. drawing: the CPU renderer's visibility buffer ([`cuticle_render::Renderer::draw`]),
+//!    uploaded by [`GpuRenderer::prepare`] — not yet on the GPU;
+//! 3. shadows: deep opacity maps of every lit light, filtered to its bandwidth, and T̃ at every
+//!    visible point, on the GPU ([`shadows`]), into the buffer shading reads;
 //! 4. shading: one compute invocation per visible point ([`shading`]: single scattering, dual
 //!    scattering; WGSL files named after the CPU files they port);
 //! 5. resolve: subsamples averaged into pixels on the GPU ([`resolve`]).
@@ -56,6 +57,7 @@ pub mod frame;
 pub mod renderer;
 pub mod resolve;
 pub mod shading;
+pub mod shadows;
 pub mod strands;
 pub mod tables;
 

@@ -27,6 +27,8 @@ fn compare(scene: &Scene, label: &str) -> f64 {
     );
     let e = relative_rmse(&got, &want, &mask);
     let worst = worst_relative(&got, &want);
+    let total = |i: &cuticle_render::Image| i.pixels.iter().zip(&mask).filter(|(_, m)| **m).map(|(p, _)| p.x + p.y + p.z).sum::<f64>();
+    eprintln!("DEBUG {label}: GPU/CPU total {}", total(&got) / total(&want));
     eprintln!(
         "{label}: relative RMSE over {} hair pixels {e:.2e}, worst pixel {worst:.2e} of the brightest",
         mask.iter().filter(|&&m| m).count(),
@@ -87,6 +89,9 @@ fn real_map_matches_the_cpu() {
 fn eccentric_fiber_matches_the_cpu() {
     let mut s = spec(150, "default", 40);
     s.hair.eccentricity = 0.85;
+    let mut single = s.clone();
+    single.multiple = false;
+    compare(&load(single), "DEBUG eccentric single");
     let e = compare(&load(s), "sky, eccentric 0.85, single + multiple");
     assert!(e < 5e-3, "{e}");
 }
