@@ -58,6 +58,11 @@ fn trt_lobes(eta: f32, theta_d: f32) -> TrtLobes {
         }
         return out;
     }
+    return trt_table(theta_d);
+}
+
+fn trt_table(theta_d: f32) -> TrtLobes {
+    var out: TrtLobes;
     let cx = cell_x(params.grids[GRID_LOBE_TRT], abs(theta_d));
     for (var c = 0u; c < 3u; c++) {
         let x = fiber.lobe_x[c];

@@ -134,9 +134,12 @@ mod tests {
     use cuticle_render::tables::cg_integrals::Tables;
     use cuticle_render::tables::lobe_table::trt_shape;
 
-    /// cg_lobes.wgsl's TRT fit (with its caustic moments) at a few (η, θ_d, σ_a) against
-    /// cg_lobes.rs's: every slot's weight within 1e-3 relative, its bandwidth and centre
-    /// within 1e-4 (f32 against f64).
+    /// cg_lobes.wgsl's TRT fit (with its caustic moments) at (η, θ_d, σ_a) on both sides of
+    /// η′ = 2 against cg_lobes.rs's: every slot's weight within 1 % relative, its bandwidth
+    /// and centre within 2e-3 (relative above 1 rad, absolute below). Measured on lavapipe:
+    /// weights 4e-3, bandwidths and centres 1.2e-3, all from φ* (the fold of Φ, where f32
+    /// loses the most); without the caustic moments the weights would be 1.8–2.3 times the
+    /// CPU's.
     #[test]
     fn trt_fit_matches_the_cpu() {
         let gpu = GpuDevice::new(Preference::Any).expect("a GPU adapter (lavapipe will do)");
@@ -229,9 +232,9 @@ mod tests {
                 let (w, b, c) = (got[3 * k][slot], got[3 * k + 1][slot], got[3 * k + 2][slot]);
                 let lobe = want[slot];
                 eprintln!("η {eta} θ_d {td} σ {s} slot {slot}: GPU ({w}, {b}, {c}) CPU {lobe:?}");
-                assert!((w as f64 - lobe.weight).abs() <= 1e-1 * lobe.weight.abs().max(1e-6));
-                assert!((b as f64 - lobe.bandwidth).abs() <= 1e-1 * lobe.bandwidth.max(1.0));
-                assert!((c as f64 - lobe.centre).abs() <= 1e-2);
+                assert!((w as f64 - lobe.weight).abs() <= 1e-2 * lobe.weight.abs().max(1e-6));
+                assert!((b as f64 - lobe.bandwidth).abs() <= 2e-3 * lobe.bandwidth.max(1.0));
+                assert!((c as f64 - lobe.centre).abs() <= 2e-3);
             }
         }
     }
