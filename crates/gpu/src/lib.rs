@@ -19,7 +19,8 @@
 //!
 //! Only what an edit changes is redone: a hair-parameter or paint edit re-runs shading and
 //! resolve ([`GpuRenderer::shade`], [`GpuRenderer::update_strands`]); a camera or light move
-//! needs a new [`GpuRenderer::prepare`]. [`GpuFrame::passes`] counts what ran.
+//! redraws and rebuilds the shadows, keeping the uploaded tables and strand records
+//! ([`GpuRenderer::redraw`]), then re-shades. [`GpuFrame::passes`] counts what ran.
 //!
 //! # Use (the CLI, the window)
 //! ```no_run
@@ -40,6 +41,9 @@
 //!                                              // absorption (hair.mu_a, default_mu_a) stays
 //! let ids = gpu.visibility(&frame); // strand id per subsample, for picking strands to paint
 //!                                   // (from the CPU's visibility buffer while drawing is there)
+//! scene.camera.eye[0] += 1.0;
+//! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again, no uploads
+//! let moved = gpu.shade(&mut frame, &scene);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //! Every call blocks until the GPU is done; a window calls them from its render worker.

@@ -194,8 +194,8 @@ impl GpuRenderer {
         self.gpu.queue.submit([encoder.finish()]);
         self.wait();
         timings.shadows = start.elapsed().as_secs_f64();
-        let shadow_gpu_seconds = shadow_stopwatch
-            .map(|s| s.seconds(&self.gpu.device, &self.gpu.queue)[0]);
+        let shadow_gpu_seconds =
+            shadow_stopwatch.map(|s| s.seconds(&self.gpu.device, &self.gpu.queue)[0]);
         let start = Instant::now();
         let resolve_group = bind_group(
             device,

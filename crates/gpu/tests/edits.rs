@@ -78,7 +78,10 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
     );
     assert_ne!(after.pixels, before.pixels, "the move changed nothing");
     let (fresh, _) = gpu.render(&moved).unwrap();
-    assert_eq!(after.pixels, fresh.pixels, "the redrawn frame is not the moved one");
+    assert_eq!(
+        after.pixels, fresh.pixels,
+        "the redrawn frame is not the moved one"
+    );
     // A painted strand stays painted across the move.
     let vis = gpu.visibility(&frame);
     let s = most_visible(&vis, moved.groom.strand_count());
@@ -86,7 +89,11 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
         .unwrap();
     let painted = gpu.shade(&mut frame, &moved);
     gpu.redraw(&mut frame, &moved).unwrap();
-    assert_eq!(frame.passes().strand_uploads, 2, "the move re-uploaded strands");
+    assert_eq!(
+        frame.passes().strand_uploads,
+        2,
+        "the move re-uploaded strands"
+    );
     assert_eq!(gpu.shade(&mut frame, &moved).pixels, painted.pixels);
 }
 

@@ -1,15 +1,16 @@
 //! The GPU's deep opacity maps (crates/gpu/src/shadows) against frame/shadow.rs's (the
 //! reference, in f64): T̃ of every light at every visible point of the same drawing.
 //!
-//! Bounds: mean |ΔT̃| below 2e-3 and fewer than 1 % of the (point, light) pairs off by more
-//! than 0.05. The two build the same maps from the same frames; what differs is f32 against
-//! f64 in the samples' positions and depths, so a sample or a looked-up point near a texel edge
-//! or a layer boundary can fall on the other side and move T̃ by a texel's or a layer's share,
-//! and the fixed-point sums round each sample by at most half a unit (2^-20 of a fiber count
-//! or coarser for large grooms). The figures measured on lavapipe are printed (and given in the
-//! report that set these bounds); the bounds leave a factor of several above them. The test
-//! checks that the bounds can tell: maps that ignored the lights' bandwidth (the filter of
-//! Ren et al. 2010's convolution) would miss them by far.
+//! Bounds: mean |ΔT̃| below 2e-5 and fewer than 0.1 % of the (point, light) pairs off by more
+//! than 0.05 (measured on lavapipe: mean 2.4e-7, no pair off by 0.05). The two build the same
+//! maps from the same frames; what differs is f32 against f64 in the samples' positions and
+//! depths, so a sample or a looked-up point near a texel edge or a layer boundary can fall on
+//! the other side and move T̃ by a texel's or a layer's share, and the fixed-point sums round
+//! each sample by at most half a unit (2^-20 of a fiber count here, coarser for large grooms).
+//! lavapipe rounds like the CPU; a hardware GPU contracts multiply-adds and may flip more
+//! samples, which the bounds' factor of 100 over the measured mean is for. They can tell:
+//! maps that ignored the lights' bandwidth (the filter of Ren et al. 2010's convolution) are
+//! 6e-2 off.
 
 mod common;
 
@@ -27,7 +28,11 @@ fn distance(a: &[f32], b: &[f32]) -> (f64, f64) {
         .map(|(x, y)| (x - y).abs() as f64)
         .sum::<f64>()
         / a.len() as f64;
-    let off = a.iter().zip(b).filter(|(x, y)| (*x - *y).abs() > 0.05).count();
+    let off = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| (*x - *y).abs() > 0.05)
+        .count();
     (mean, off as f64 / a.len() as f64)
 }
 
@@ -41,11 +46,15 @@ fn gpu_shadows_match_the_cpu_opacity_maps() {
     assert!(got.iter().all(|t| t.is_finite() && (0.0..=1.0).contains(t)));
     // The maps shadow something: 7.4 % of the pairs lie below T̃ = 0.5 (the reference's).
     let dark = want.shadow.iter().filter(|&&t| t < 0.5).count();
-    assert!(dark * 20 > want.shadow.len(), "{dark} of {} dark", want.shadow.len());
+    assert!(
+        dark * 20 > want.shadow.len(),
+        "{dark} of {} dark",
+        want.shadow.len()
+    );
     let (mean, off) = distance(&got, &want.shadow);
     eprintln!("GPU against CPU shadows: mean |ΔT| {mean:.2e}, {off:.2e} of pairs off by > 0.05");
-    assert!(mean < 2e-3, "mean |ΔT| {mean}");
-    assert!(off < 1e-2, "{off} of pairs off by more than 0.05");
+    assert!(mean < 2e-5, "mean |ΔT| {mean}");
+    assert!(off < 1e-3, "{off} of pairs off by more than 0.05");
     // Unfiltered maps (every light treated as directional) are far from the GPU's.
     let dirs: Vec<_> = want.lights.iter().map(|l| l.direction).collect();
     let sharp = transmittance(
@@ -57,7 +66,7 @@ fn gpu_shadows_match_the_cpu_opacity_maps() {
     );
     let (unfiltered, _) = distance(&got, &sharp);
     eprintln!("unfiltered maps differ by mean |ΔT| {unfiltered:.2e}");
-    assert!(unfiltered > 5.0 * 2e-3, "{unfiltered}");
+    assert!(unfiltered > 100.0 * 2e-5, "{unfiltered}");
 }
 
 #[test]
@@ -76,6 +85,6 @@ fn no_density_and_black_lights_cast_no_shadow() {
     let lights = scene.lights.len();
     assert!(got.iter().skip(3).step_by(lights).all(|&t| t == 1.0));
     let (mean, _) = distance(&got, &want.shadow);
-    assert!(mean < 2e-3, "{mean}");
+    assert!(mean < 2e-5, "{mean}");
     assert_eq!(frame.passes().shadow_steps, 5);
 }

@@ -14,9 +14,9 @@
 //! Gaussians, κ − κ₁ − κ₂ = 2κ₁κ₂(c − 1)/(κ + κ₁ + κ₂), which f32 would lose for sharp lobes.
 
 use crate::tables::{GridDesc, slot};
+use bytemuck::{Pod, Zeroable};
 use cuticle_fiber::special::GaussLegendre;
 use cuticle_render::srbf::cg_lobes::{KEPT_PANELS, KEPT_POINTS};
-use bytemuck::{Pod, Zeroable};
 
 /// The WGSL of the pass, in the order above.
 pub const SOURCE: [&str; 11] = [
@@ -144,7 +144,15 @@ mod tests {
     fn trt_fit_matches_the_cpu() {
         let gpu = GpuDevice::new(Preference::Any).expect("a GPU adapter (lavapipe will do)");
         let fiber = cuticle_render::HairParams::default().fiber(None);
-        let cases = [(1.55, 0.0, 0.3), (1.55, 0.4, 0.1), (1.7, -0.9, 1.0), (1.45, 1.2, 0.5), (1.25, 0.3, 0.2), (1.97, 0.2, 0.2), (1.97, 0.5, 0.05)];
+        let cases = [
+            (1.55, 0.0, 0.3),
+            (1.55, 0.4, 0.1),
+            (1.7, -0.9, 1.0),
+            (1.45, 1.2, 0.5),
+            (1.25, 0.3, 0.2),
+            (1.97, 0.2, 0.2),
+            (1.97, 0.5, 0.05),
+        ];
         let probe = format!(
             "@compute @workgroup_size(1) fn probe() {{ {} }}",
             cases
@@ -160,18 +168,22 @@ mod tests {
                 ))
                 .collect::<String>()
         );
-        let module = gpu.device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("probe"),
-            source: wgpu::ShaderSource::Wgsl((kept_rule() + &SOURCE.concat() + &probe).into()),
-        });
-        let pipeline = gpu.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("probe"),
-            layout: None,
-            module: &module,
-            entry_point: Some("probe"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let module = gpu
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("probe"),
+                source: wgpu::ShaderSource::Wgsl((kept_rule() + &SOURCE.concat() + &probe).into()),
+            });
+        let pipeline = gpu
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some("probe"),
+                layout: None,
+                module: &module,
+                entry_point: Some("probe"),
+                compilation_options: Default::default(),
+                cache: None,
+            });
         let cpu = cuticle_render::Renderer::new();
         let packed = crate::tables::static_grids(&cpu.tables, &cpu.half, &cpu.spread);
         let mut params = ShadeParams {

@@ -166,7 +166,11 @@ impl ShadowMaps {
             .map(|(m, &j)| {
                 map_of_light[j] = m as u32;
                 let light = &inputs.lights[j];
-                map_record(&MapFrame::new(groom, light.direction, n), j, light.bandwidth)
+                map_record(
+                    &MapFrame::new(groom, light.direction, n),
+                    j,
+                    light.bandwidth,
+                )
             })
             .collect();
         let points: Vec<[f32; 4]> = groom
