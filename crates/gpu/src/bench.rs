@@ -1,5 +1,5 @@
-//! The GPU renderer's benchmark, the twin of `cuticle_render::bench`: full frames (drawing and
-//! shadows on the CPU, upload, shading and resolve on the GPU) and re-renders after an
+//! The GPU renderer's benchmark, the twin of `cuticle_render::bench`: full frames (drawing on
+//! the CPU, upload, shadows, shading and resolve on the GPU) and re-renders after an
 //! absorption edit (every strand's record rewritten, then shading and resolve), as medians of
 //! each stage, with the GPU's own timestamps where the adapter has them.
 
@@ -23,11 +23,15 @@ pub struct GpuBenchReport {
     pub upload: f64,
     /// Median wall seconds of a full frame: drawing + shadows + upload + shading + resolve.
     pub full_frame: f64,
+    /// Median GPU seconds of a full frame's passes (shadows, shading, resolve), where the
+    /// adapter has timestamps.
+    pub full_gpu: Option<GpuSeconds>,
     /// Median seconds of each stage of a re-render after an absorption edit.
     pub rerender: Timings,
     /// Median wall seconds of a re-render, the edit's strand upload included.
     pub rerender_frame: f64,
-    /// Median GPU seconds of a re-render's passes, where the adapter has timestamps.
+    /// Median GPU seconds of a re-render's passes, where the adapter has timestamps (`shadows`
+    /// 0: an edit does not re-run them).
     pub rerender_gpu: Option<GpuSeconds>,
 }
 
@@ -37,6 +41,7 @@ pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchRe
     let frames = frames.max(1);
     let (mut full, mut upload, mut full_frame) = (Vec::new(), Vec::new(), Vec::new());
     let (mut rerender, mut rerender_frame, mut gpu_times) = (Vec::new(), Vec::new(), Vec::new());
+    let mut full_gpu = Vec::new();
     let mut visible_points = 0;
     for i in 0..frames {
         let start = Instant::now();
@@ -45,6 +50,7 @@ pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchRe
         visible_points = frame.prepared().points.len();
         full.push(frame.timings());
         upload.push(frame.upload_seconds());
+        full_gpu.extend(frame.gpu_seconds());
         let edited = with_absorption_edit(scene, i);
         let start = Instant::now();
         gpu.shade(&mut frame, &edited);
@@ -52,19 +58,26 @@ pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchRe
         rerender.push(frame.timings());
         gpu_times.extend(frame.gpu_seconds());
     }
-    let rerender_gpu = (!gpu_times.is_empty()).then(|| GpuSeconds {
-        shading: median(gpu_times.iter().map(|t| t.shading).collect()),
-        resolve: median(gpu_times.iter().map(|t| t.resolve).collect()),
-    });
+    let rerender_gpu = median_gpu(&gpu_times).map(|g| GpuSeconds { shadows: 0.0, ..g });
     Ok(GpuBenchReport {
         frames,
         visible_points,
         full: median_timings(&full),
         upload: median(upload),
         full_frame: median(full_frame),
+        full_gpu: median_gpu(&full_gpu),
         rerender: median_timings(&rerender),
         rerender_frame: median(rerender_frame),
         rerender_gpu,
+    })
+}
+
+fn median_gpu(runs: &[GpuSeconds]) -> Option<GpuSeconds> {
+    let m = |f: fn(&GpuSeconds) -> f64| median(runs.iter().map(f).collect());
+    (!runs.is_empty()).then(|| GpuSeconds {
+        shadows: m(|t| t.shadows),
+        shading: m(|t| t.shading),
+        resolve: m(|t| t.resolve),
     })
 }
 

@@ -127,6 +127,11 @@ impl Stopwatch {
         }
     }
 
+    /// The queries, for passes that write only one end of a span (pass k: 2k and 2k + 1).
+    pub fn query_set(&self) -> &wgpu::QuerySet {
+        &self.set
+    }
+
     /// Resolves the queries at the end of `encoder`'s work.
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.set, 0..2 * self.passes, &self.resolved, 0);

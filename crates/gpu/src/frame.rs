@@ -1,9 +1,11 @@
 //! One prepared frame on the GPU: what stays valid while only hair parameters change (the
-//! visible points, their shadows, the lights, the visibility buffer, the background) in device
+//! visible points, their opacity maps and shadows, the lights, the visibility buffer, the
+//! background) in device
 //! buffers, the parameter tables and strand records last uploaded, and counts of what ran.
 
 use crate::buffers::Stopwatch;
 use crate::shading::ShadeParams;
+use crate::shadows::ShadowMaps;
 use crate::strands::{StrandParams, StrandSource};
 use cuticle_render::tables::back_scattering::BackScatteringTables;
 use cuticle_render::tables::lobe_table::LobeTable;
@@ -16,8 +18,10 @@ use std::sync::Arc;
 pub struct Passes {
     /// Visibility-buffer drawings (on the CPU, for now).
     pub drawing: usize,
-    /// Opacity-map builds (on the CPU, for now).
+    /// Opacity-map builds with their shadows (stage 3, on the GPU).
     pub shadows: usize,
+    /// Compute dispatches of those builds (up to five each: [`crate::shadows::STEPS`]).
+    pub shadow_steps: usize,
     /// Shading dispatches.
     pub shading: usize,
     /// Resolve dispatches.
@@ -54,6 +58,8 @@ impl Visibility {
 /// Seconds each pass took on the GPU by timestamp queries, where the adapter has them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct GpuSeconds {
+    /// The opacity maps and shadows of the frame's prepare (first step to last).
+    pub shadows: f64,
     pub shading: f64,
     pub resolve: f64,
 }
@@ -71,7 +77,7 @@ pub struct GpuFrame {
     pub(crate) strand_source: StrandSource,
     pub(crate) strands_buffer: wgpu::Buffer,
     pub(crate) points_buffer: wgpu::Buffer,
-    pub(crate) shadow_buffer: wgpu::Buffer,
+    pub(crate) shadows: ShadowMaps,
     pub(crate) lights_buffer: wgpu::Buffer,
     pub(crate) colours_buffer: wgpu::Buffer,
     pub(crate) image_buffer: wgpu::Buffer,
@@ -83,6 +89,7 @@ pub struct GpuFrame {
     pub(crate) timings: Timings,
     pub(crate) upload_seconds: f64,
     pub(crate) gpu_seconds: Option<GpuSeconds>,
+    pub(crate) shadow_gpu_seconds: Option<f64>,
 }
 
 impl GpuFrame {
@@ -107,7 +114,8 @@ impl GpuFrame {
         self.gpu_seconds
     }
 
-    /// The CPU renderer's prepared frame this one uploaded (visible points, their shadows).
+    /// The CPU renderer's drawing this frame uploaded (visible points, lights, background; its
+    /// `shadow` is empty: the shadows are the GPU's, [`crate::GpuRenderer::shadows`]).
     pub fn prepared(&self) -> &Prepared {
         &self.prepared
     }

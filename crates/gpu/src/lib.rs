@@ -6,9 +6,10 @@
 //!    normalisation, the circular-Gaussian width table) uploaded once by [`GpuRenderer::new`];
 //!    the lobe table and back-scattering tables uploaded when a hair parameter rebuilds them
 //!    ([`tables`]);
-//! 2. drawing and 3. shadows: the CPU renderer's visibility buffer and deep opacity maps
-//!    ([`cuticle_render::Renderer::prepare`]), uploaded by [`GpuRenderer::prepare`] — not yet on
-//!    the GPU;
+//! 2. drawing: the CPU renderer's visibility buffer ([`cuticle_render::Renderer::draw`]),
+//!    uploaded by [`GpuRenderer::prepare`] — not yet on the GPU;
+//! 3. shadows: deep opacity maps of every lit light, filtered to its bandwidth, and T̃ at every
+//!    visible point, on the GPU ([`shadows`]), into the buffer shading reads;
 //! 4. shading: one compute invocation per visible point ([`shading`]: single scattering, dual
 //!    scattering; WGSL files named after the CPU files they port);
 //! 5. resolve: subsamples averaged into pixels on the GPU ([`resolve`]).
@@ -18,7 +19,8 @@
 //!
 //! Only what an edit changes is redone: a hair-parameter or paint edit re-runs shading and
 //! resolve ([`GpuRenderer::shade`], [`GpuRenderer::update_strands`]); a camera or light move
-//! needs a new [`GpuRenderer::prepare`]. [`GpuFrame::passes`] counts what ran.
+//! redraws and rebuilds the shadows, keeping the uploaded tables and strand records
+//! ([`GpuRenderer::redraw`]), then re-shades. [`GpuFrame::passes`] counts what ran.
 //!
 //! # Use (the CLI, the window)
 //! ```no_run
@@ -39,6 +41,9 @@
 //!                                              // absorption (hair.mu_a, default_mu_a) stays
 //! let ids = gpu.visibility(&frame); // strand id per subsample, for picking strands to paint
 //!                                   // (from the CPU's visibility buffer while drawing is there)
+//! scene.camera.eye[0] += 1.0;
+//! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again, no uploads
+//! let moved = gpu.shade(&mut frame, &scene);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //! Every call blocks until the GPU is done; a window calls them from its render worker.
@@ -56,6 +61,7 @@ pub mod frame;
 pub mod renderer;
 pub mod resolve;
 pub mod shading;
+pub mod shadows;
 pub mod strands;
 pub mod tables;
 

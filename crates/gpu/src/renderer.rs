@@ -6,6 +6,7 @@ use crate::device::GpuDevice;
 use crate::frame::{GpuFrame, GpuSeconds, Passes, Visibility};
 use crate::resolve::{self, ResolveParams};
 use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
+use crate::shadows::{ShadowInputs, ShadowMaps, ShadowPipelines};
 use crate::strands::{self, StrandError, StrandParams, StrandSource};
 use crate::tables::{self, GridDesc, slot};
 use cuticle_render::frame::raster::EMPTY;
@@ -38,6 +39,7 @@ pub struct GpuRenderer {
     static_grids: [GridDesc; slot::COUNT],
     shade: wgpu::ComputePipeline,
     resolve: wgpu::ComputePipeline,
+    shadows: ShadowPipelines,
 }
 
 impl GpuRenderer {
@@ -59,6 +61,7 @@ impl GpuRenderer {
             static_grids,
             shade: shading::pipeline(device),
             resolve: resolve::pipeline(device),
+            shadows: ShadowPipelines::new(device),
             gpu: gpu.clone(),
             cpu: cpu.clone(),
         }
@@ -68,8 +71,9 @@ impl GpuRenderer {
         &self.gpu
     }
 
-    /// Stages 2–3 (drawing and shadows, by the CPU renderer for now) and the upload of their
-    /// results, the lights, the background and every strand's record.
+    /// Stages 2–3: drawing (by the CPU renderer for now) and its upload with the lights, the
+    /// background and every strand's record, then the opacity maps and shadows on the GPU
+    /// ([`crate::shadows`]).
     pub fn prepare(&self, scene: &Scene) -> Result<GpuFrame, GpuError> {
         if scene.spec.method != Method::Srbf {
             return Err(GpuError::Method);
@@ -79,13 +83,19 @@ impl GpuRenderer {
             srbf_fit: scene.fit_seconds,
             ..Timings::default()
         };
-        let prepared = self.cpu.prepare(scene, &mut timings);
+        let prepared = self.cpu.draw(scene, &mut timings);
         let start = Instant::now();
         let cov = &prepared.coverage;
         let point_count = scene.groom.point_count();
+        let (layer_bytes, shadow_bytes) = ShadowMaps::sizes(
+            &prepared.lights,
+            scene.spec.shadows.resolution,
+            prepared.points.len(),
+        );
         self.check_sizes(&[
             ("the visibility buffer", cov.segment.len() * 8),
-            ("the shadows", prepared.shadow.len() * 4),
+            ("the opacity maps", layer_bytes),
+            ("the shadows", shadow_bytes),
             ("the point colours", point_count * 16),
             ("the image", cov.width * cov.height * 16),
         ])?;
@@ -156,6 +166,37 @@ impl GpuRenderer {
             "resolve params",
             bytemuck::bytes_of(&resolve_params),
         );
+        let points_buffer =
+            buffers::storage(device, "points", bytemuck::cast_slice(&points), false);
+        let shadows = ShadowMaps::new(
+            device,
+            &self.shadows,
+            &ShadowInputs {
+                groom: &scene.groom,
+                lights: &prepared.lights,
+                options: &scene.spec.shadows,
+                points: &points_buffer,
+                point_count: points.len(),
+            },
+        );
+        let upload_seconds = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let shadow_stopwatch = Stopwatch::new(device, &self.gpu.queue, 1);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let shadow_steps = shadows.encode(
+            &self.shadows,
+            &mut encoder,
+            shadow_stopwatch.as_ref().map(|s| (s.query_set(), 0)),
+        );
+        if let Some(s) = &shadow_stopwatch {
+            s.resolve(&mut encoder);
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+        self.wait();
+        timings.shadows = start.elapsed().as_secs_f64();
+        let shadow_gpu_seconds =
+            shadow_stopwatch.map(|s| s.seconds(&self.gpu.device, &self.gpu.queue)[0]);
+        let start = Instant::now();
         let resolve_group = bind_group(
             device,
             &self.resolve,
@@ -182,13 +223,8 @@ impl GpuRenderer {
             ),
             strands: strand_records,
             strand_source: StrandSource::of(scene),
-            points_buffer: buffers::storage(device, "points", bytemuck::cast_slice(&points), false),
-            shadow_buffer: buffers::storage(
-                device,
-                "shadows",
-                bytemuck::cast_slice(&prepared.shadow),
-                false,
-            ),
+            points_buffer,
+            shadows,
             lights_buffer: buffers::storage(device, "lights", bytemuck::cast_slice(&lights), false),
             colours_buffer,
             image_buffer,
@@ -198,16 +234,44 @@ impl GpuRenderer {
             passes: Passes {
                 drawing: 1,
                 shadows: 1,
+                shadow_steps,
                 strand_uploads: 1,
                 ..Passes::default()
             },
             timings,
             upload_seconds: 0.0,
             gpu_seconds: None,
+            shadow_gpu_seconds,
             prepared,
         };
-        frame.upload_seconds = start.elapsed().as_secs_f64();
+        frame.upload_seconds = upload_seconds + start.elapsed().as_secs_f64();
         Ok(frame)
+    }
+
+    /// A camera or light move on a shaded frame: stages 2–3 again (drawing, the opacity maps
+    /// and the shadows at the newly visible points) for `scene`, keeping the parameter tables
+    /// and the strand records (painted strands included) already on the device, so that the
+    /// next [`Self::shade`] uploads nothing a hair edit has not changed. A groom with another
+    /// strand count, or a changed absorption source, re-derives the strand records.
+    pub fn redraw(&self, frame: &mut GpuFrame, scene: &Scene) -> Result<(), GpuError> {
+        let mut fresh = self.prepare(scene)?;
+        let mut passes = frame.passes;
+        passes.drawing += fresh.passes.drawing;
+        passes.shadows += fresh.passes.shadows;
+        passes.shadow_steps += fresh.passes.shadow_steps;
+        if fresh.strands.len() == frame.strands.len() && fresh.strand_source == frame.strand_source
+        {
+            std::mem::swap(&mut fresh.strands, &mut frame.strands);
+            std::mem::swap(&mut fresh.strands_buffer, &mut frame.strands_buffer);
+        } else {
+            passes.strand_uploads += fresh.passes.strand_uploads;
+        }
+        fresh.lobes = frame.lobes.take();
+        fresh.back = frame.back.take();
+        fresh.params.grids = frame.params.grids;
+        fresh.passes = passes;
+        *frame = fresh;
+        Ok(())
     }
 
     /// Refuses buffers over the device's limits with a clear error (wgpu would panic).
@@ -236,6 +300,8 @@ impl GpuRenderer {
         params.eccentricity = fiber.eccentricity as f32;
         params.caustic_bandwidth = caustic_bandwidth(&fiber) as f32;
         params.caustic_fade = fiber.caustic_fade as f32;
+        params.glint_scale = fiber.glint_scale as f32;
+        params.caustic_limit = fiber.caustic_limit as f32;
         params.d_b = spec.hair.d_b as f32;
         params.cutoff = spec.shadows.cutoff as f32;
         params.m = spec.quadrature as u32;
@@ -277,7 +343,7 @@ impl GpuRenderer {
                     back,
                     &frame.strands_buffer,
                     &frame.points_buffer,
-                    &frame.shadow_buffer,
+                    &frame.shadows.shadow,
                     &frame.lights_buffer,
                     &frame.colours_buffer,
                 ],
@@ -325,6 +391,7 @@ impl GpuRenderer {
         frame.gpu_seconds = stopwatch.map(|s| {
             let t = s.seconds(&self.gpu.device, &self.gpu.queue);
             GpuSeconds {
+                shadows: frame.shadow_gpu_seconds.unwrap_or(0.0),
                 shading: t[0],
                 resolve: t[1],
             }
@@ -433,6 +500,19 @@ impl GpuRenderer {
         );
         frame.passes.strand_uploads += 1;
         Ok(())
+    }
+
+    /// T̃ of light j at visible point k, `[k * lights + j]` (the layout of the CPU renderer's
+    /// `Prepared::shadow`), read back from the buffer the shading pass reads.
+    pub fn shadows(&self, frame: &GpuFrame) -> Vec<f32> {
+        let p = &frame.shadows.params;
+        let bytes = buffers::read(
+            &self.gpu.device,
+            &self.gpu.queue,
+            &frame.shadows.shadow,
+            (p.points * p.lights) as usize * 4,
+        );
+        bytemuck::pod_collect_to_vec(&bytes)
     }
 
     /// The strand seen at each subsample.

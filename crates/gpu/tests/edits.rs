@@ -1,6 +1,7 @@
 //! What an edit redoes on the GPU: a hair-parameter edit re-shades and resolves without
-//! redrawing or rebuilding shadows (counted passes), and re-uploading one strand's parameters
-//! changes that strand's pixels and no other, as the CPU renderer paints it.
+//! redrawing or rebuilding shadows (counted passes), a camera move redraws and rebuilds the
+//! shadows and re-shades without re-uploading tables or strands, and re-uploading one strand's
+//! parameters changes that strand's pixels and no other, as the CPU renderer paints it.
 
 mod common;
 
@@ -23,6 +24,7 @@ fn a_hair_edit_reshades_without_redrawing() {
         Passes {
             drawing: 1,
             shadows: 1,
+            shadow_steps: 5,
             shading: 1,
             resolve: 1,
             table_uploads: 2,
@@ -33,7 +35,11 @@ fn a_hair_edit_reshades_without_redrawing() {
     edited.spec.hair.beta_r_deg = 4.0;
     let after = gpu.shade(&mut frame, &edited);
     let second = frame.passes();
-    assert_eq!((second.drawing, second.shadows), (1, 1), "an edit redrew");
+    assert_eq!(
+        (second.drawing, second.shadows, second.shadow_steps),
+        (1, 1, 5),
+        "an edit redrew"
+    );
     assert_eq!((second.shading, second.resolve), (2, 2));
     // β_R rebuilds the back-scattering tables (not the lobe table, which has no β axis).
     assert_eq!(second.table_uploads, 3);
@@ -42,6 +48,53 @@ fn a_hair_edit_reshades_without_redrawing() {
     // The re-shaded frame is the frame rendered afresh with the edit.
     let (fresh, _) = gpu.render(&edited).unwrap();
     assert_eq!(after.pixels, fresh.pixels);
+}
+
+#[test]
+fn a_camera_move_redraws_and_reshades_without_uploads() {
+    let cpu = Renderer::new();
+    let gpu = GpuRenderer::new(device(), &cpu);
+    let scene = load(spec(80, "default", 8));
+    let mut frame = gpu.prepare(&scene).unwrap();
+    let before = gpu.shade(&mut frame, &scene);
+    let mut moved = scene.clone();
+    let c = &mut moved.camera;
+    let distance = glam::DVec3::from(c.eye).distance(glam::DVec3::from(c.target));
+    c.eye[0] += 0.2 * distance;
+    gpu.redraw(&mut frame, &moved).unwrap();
+    let after = gpu.shade(&mut frame, &moved);
+    assert_eq!(
+        frame.passes(),
+        Passes {
+            drawing: 2,
+            shadows: 2,
+            shadow_steps: 10,
+            shading: 2,
+            resolve: 2,
+            table_uploads: 2,
+            strand_uploads: 1,
+        },
+        "a camera move must redo drawing, shadows and shading, and upload nothing else"
+    );
+    assert_ne!(after.pixels, before.pixels, "the move changed nothing");
+    let (fresh, _) = gpu.render(&moved).unwrap();
+    assert_eq!(
+        after.pixels, fresh.pixels,
+        "the redrawn frame is not the moved one"
+    );
+    // A painted strand stays painted across the move.
+    let vis = gpu.visibility(&frame);
+    let s = most_visible(&vis, moved.groom.strand_count());
+    gpu.update_strands(&mut frame, s, &[StrandParams::new([2.0, 3.0, 5.0])])
+        .unwrap();
+    let painted = gpu.shade(&mut frame, &moved);
+    gpu.redraw(&mut frame, &moved).unwrap();
+    assert_eq!(
+        frame.passes().strand_uploads,
+        2,
+        "the move re-uploaded strands"
+    );
+    assert_eq!(gpu.shade(&mut frame, &moved).pixels, painted.pixels);
 }
 
 /// The strand covering the most subsamples.

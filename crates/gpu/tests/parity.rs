@@ -2,7 +2,8 @@
 //! at 240 × 160 with per-strand absorption, single scattering and with dual scattering, under
 //! the procedural sky and a real map, and an eccentric fiber.
 //!
-//! Bounds: relative RMSE over hair pixels below 5e-3 and no pixel channel off by more than 1e-2
+//! Bounds: relative RMSE over hair pixels below 5e-3 (the eccentric fiber: 1e-3, see its test)
+//! and no pixel channel off by more than 1e-2
 //! of the brightest (measured on lavapipe: RMSE 5e-5 to 1e-4, worst pixel 8e-5 to 1.5e-4). The
 //! two share every input (visibility, shadows, tables rounded to f32); what differs is f32
 //! arithmetic, and WGSL lets hardware compute sin/cos to 2^-11 absolute and exp to 3 + 2|x| ulp,
@@ -83,12 +84,27 @@ fn real_map_matches_the_cpu() {
     assert!(e < 5e-3, "{e}");
 }
 
+/// The eccentric fiber's TRT is fitted at every sample (η̄* varies), with the CPU's caustic
+/// moments (Marschner 2003's N_TRT energy): it now agrees as closely as the circular scenes
+/// (1.0e-4 on lavapipe; the fit without the caustic moments was 4e-3 off), so its bound is
+/// 1e-3, ten times that, where the circular scenes keep the 5e-3: the on-the-spot fit
+/// evaluates more transcendentals (asin, exp near the fold of Φ) than a table read, and a
+/// hardware GPU's WGSL precision there is what the margin is for. And eccentricity moves this
+/// image by far more than the bound.
 #[test]
 fn eccentric_fiber_matches_the_cpu() {
     let mut s = spec(150, "default", 40);
     s.hair.eccentricity = 0.85;
-    let e = compare(&load(s), "sky, eccentric 0.85, single + multiple");
-    assert!(e < 5e-3, "{e}");
+    let scene = load(s);
+    let e = compare(&scene, "sky, eccentric 0.85, single + multiple");
+    assert!(e < 1e-3, "{e}");
+    let mut circular = scene.clone();
+    circular.spec.hair.eccentricity = 1.0;
+    let (with, prepared, _) = cpu().render(&scene);
+    let (without, _, _) = cpu().render(&circular);
+    let share = relative_rmse(&without, &with, &hair_pixels_of(&prepared));
+    eprintln!("eccentricity 0.85 moves this image by {share:.3} (relative RMSE)");
+    assert!(share > 10.0 * 1e-3, "{share}");
 }
 
 /// Zero-length segments, one-point strands and an empty groom render finite pixels equal to the

@@ -31,7 +31,7 @@ pub struct GpuRendered {
     pub device: Value,
 }
 
-/// The scene on the GPU: prepare (drawing and shadows by the CPU renderer), shade, resolve.
+/// The scene on the GPU: prepare (drawing by the CPU renderer, shadows on the GPU), shade, resolve.
 pub fn render(device: &GpuDevice, cpu: &Renderer, scene: &Scene) -> Result<GpuRendered> {
     let gpu = GpuRenderer::new(device, cpu);
     let (image, frame) = gpu.render(scene)?;
@@ -46,7 +46,7 @@ pub fn render(device: &GpuDevice, cpu: &Renderer, scene: &Scene) -> Result<GpuRe
             "passes": frame.passes(),
             "upload_seconds": frame.upload_seconds(),
             "gpu_seconds": frame.gpu_seconds(),
-            "stages_on_cpu": ["drawing", "shadows"],
+            "stages_on_cpu": ["drawing"],
         }),
         image,
     })
@@ -71,7 +71,7 @@ pub fn bench(
 /// bench.json's `"seconds"` and `"device"` of a GPU run.
 pub fn bench_json(device: &GpuDevice, r: &GpuBenchReport) -> Value {
     json!({
-        "device": { "name": "gpu", "adapter": device.summary, "stages_on_cpu": ["drawing", "shadows"] },
+        "device": { "name": "gpu", "adapter": device.summary, "stages_on_cpu": ["drawing"] },
         "frames": r.frames,
         "visible_points": r.visible_points,
         "seconds": {
@@ -82,6 +82,7 @@ pub fn bench_json(device: &GpuDevice, r: &GpuBenchReport) -> Value {
                 "shading": r.full.shading,
                 "resolve": r.full.resolve,
                 "frame": r.full_frame,
+                "gpu_timestamps": r.full_gpu,
             },
             "rerender": {
                 "shading": r.rerender.shading,
@@ -96,24 +97,23 @@ pub fn bench_json(device: &GpuDevice, r: &GpuBenchReport) -> Value {
 /// The GPU benchmark's summary line.
 pub fn print_bench(device: &GpuDevice, r: &GpuBenchReport) {
     let f = &r.full;
-    let stamps = r
-        .rerender_gpu
-        .map_or("no timestamp queries on this adapter".to_string(), |g| {
-            format!(
-                "GPU timestamps: shading {:.4} s, resolve {:.4} s",
-                g.shading, g.resolve
-            )
-        });
+    let stamps = match (r.full_gpu, r.rerender_gpu) {
+        (Some(f), Some(g)) => format!(
+            "GPU timestamps: full frame shadows {:.4} s, shading {:.4} s, resolve {:.4} s; re-render shading {:.4} s, resolve {:.4} s",
+            f.shadows, f.shading, f.resolve, g.shading, g.resolve
+        ),
+        _ => "no timestamp queries on this adapter".to_string(),
+    };
     println!(
-        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} and shadows {:.3} on the CPU, upload {:.3}, shading {:.3}, resolve {:.3}); {}; {stamps}",
+        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} on the CPU, upload {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); {}; {stamps}",
         device.summary.name,
         device.summary.kind,
         r.frames,
         r.visible_points,
         r.full_frame,
         f.drawing,
-        f.shadows,
         r.upload,
+        f.shadows,
         f.shading,
         f.resolve,
         crate::commands::render::rerender_summary(r.rerender_frame, &r.rerender),

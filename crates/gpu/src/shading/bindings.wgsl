@@ -45,9 +45,9 @@ struct Params {
     multiple: u32,
     sigma_scale: f32,
     min_z: f32,
+    glint_scale: f32,
+    caustic_limit: f32,
     _pad0: f32,
-    _pad1: f32,
-    _pad2: f32,
     grids: array<Grid, 9>,
 }
 

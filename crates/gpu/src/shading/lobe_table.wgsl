@@ -49,14 +49,20 @@ fn trt_lobes(eta: f32, theta_d: f32) -> TrtLobes {
     var out: TrtLobes;
     if (params.eccentricity != 1.0) {
         let g = geometry(eta, theta_d);
+        let moments = caustic_moments(eta, theta_d, g.eta_prime);
         for (var c = 0u; c < 3u; c++) {
-            let fit = trt_fit(g, fiber.mu[c]);
+            let fit = trt_fit(g, moments, fiber.mu[c]);
             out.weight[c] = fit.weight;
             out.bandwidth[c] = fit.bandwidth;
             out.centre = fit.centre;
         }
         return out;
     }
+    return trt_table(theta_d);
+}
+
+fn trt_table(theta_d: f32) -> TrtLobes {
+    var out: TrtLobes;
     let cx = cell_x(params.grids[GRID_LOBE_TRT], abs(theta_d));
     for (var c = 0u; c < 3u; c++) {
         let x = fiber.lobe_x[c];

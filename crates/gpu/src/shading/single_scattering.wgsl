@@ -42,7 +42,9 @@ fn integrand(it: Integrand, s: Incident) -> vec3<f32> {
             return global_tt(tt_lobes(s.theta_d), it.delta);
         }
         case 5u: {
-            return global_trt(trt_lobes(params.eta, s.theta_d), it.delta);
+            // At the fiber's own η the TRT fit is the lobe table's, eccentric or not (the CPU
+            // fits it on the spot there; the table holds the same fit).
+            return global_trt(trt_table(s.theta_d), it.delta);
         }
         default: {
             return vec3<f32>(1.0);

@@ -147,6 +147,19 @@ impl Renderer {
     /// # Panics
     /// For [`Method::Path`] (see [`Renderer::accepts`]).
     pub fn prepare(&self, scene: &Scene, timings: &mut Timings) -> Prepared {
+        let mut prepared = self.draw(scene, timings);
+        let start = Instant::now();
+        prepared.shadow = shadows_of_lit(scene, &prepared.points, &prepared.lights);
+        timings.shadows = start.elapsed().as_secs_f64();
+        prepared
+    }
+
+    /// Stage 2 and the frame's lights, with `shadow` left empty (the GPU renderer makes its
+    /// own): [`Self::prepare`] without the opacity maps.
+    ///
+    /// # Panics
+    /// For [`Method::Path`] (see [`Renderer::accepts`]).
+    pub fn draw(&self, scene: &Scene, timings: &mut Timings) -> Prepared {
         if let Err(e) = Self::accepts(scene) {
             panic!("{e}");
         }
@@ -163,7 +176,6 @@ impl Renderer {
         let background = background(scene, &view);
         let points = coverage.visible_points(scene.groom.point_count());
         timings.drawing = start.elapsed().as_secs_f64();
-        let start = Instant::now();
         let lights = match spec.method {
             Method::Srbf => srbf_lights(scene),
             Method::Brute | Method::Path => brute::directional_lights(scene, spec.brute_grid)
@@ -175,15 +187,13 @@ impl Renderer {
                 })
                 .collect(),
         };
-        let shadow = shadows_of_lit(scene, &points, &lights);
-        timings.shadows = start.elapsed().as_secs_f64();
         Prepared {
             coverage,
             view,
             background,
             points,
             lights,
-            shadow,
+            shadow: Vec::new(),
             strand_of_point: strand_of_points(&scene.groom),
         }
     }

@@ -47,9 +47,43 @@ impl ShadowOptions {
     }
 }
 
-/// Layer boundaries behind the first hair, as fractions of the groom's bounding radius.
-const LAYERS: [f64; 7] = [0.0, 0.005, 0.015, 0.035, 0.075, 0.155, 0.4];
-const NL: usize = LAYERS.len() - 1;
+/// Layer boundaries behind the first hair, as fractions of the groom's bounding radius (pub,
+/// with [`MapFrame`]: the GPU's twin builds the same maps).
+pub const LAYERS: [f64; 7] = [0.0, 0.005, 0.015, 0.035, 0.075, 0.155, 0.4];
+/// Layers of a map.
+pub const NL: usize = LAYERS.len() - 1;
+
+/// Where one light's map lies: orthographic along the light's travel over the groom's
+/// bounding sphere, `n` texels a side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapFrame {
+    pub n: usize,
+    pub centre: DVec3,
+    /// u, v across the map and the light's travel (depth grows along it).
+    pub axes: [DVec3; 3],
+    pub radius: f64,
+    pub texel: f64,
+}
+
+impl MapFrame {
+    /// The frame of light arriving from `toward_light` (a unit vector pointing at the light).
+    pub fn new(groom: &Groom, toward_light: DVec3, n: usize) -> Self {
+        let b = groom.bounds();
+        let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
+        let centre = 0.5 * (lo + hi);
+        let radius = (0.5 * (hi - lo).length()).max(NEAR);
+        let travel = -toward_light.normalize();
+        let u = travel.any_orthonormal_vector();
+        let v = travel.cross(u);
+        Self {
+            n,
+            centre,
+            axes: [u, v, travel],
+            radius,
+            texel: 2.0 * radius / n as f64,
+        }
+    }
+}
 
 /// One light's deep opacity map.
 struct OpacityMap {
@@ -103,19 +137,19 @@ pub fn transmittance(
 impl OpacityMap {
     /// The map of light arriving from `toward_light` (a unit vector pointing at the light).
     fn build(groom: &Groom, toward_light: DVec3, n: usize) -> Self {
-        let b = groom.bounds();
-        let (lo, hi) = (b.min.as_dvec3(), b.max.as_dvec3());
-        let centre = 0.5 * (lo + hi);
-        let radius = (0.5 * (hi - lo).length()).max(NEAR);
-        let travel = -toward_light.normalize();
-        let u = travel.any_orthonormal_vector();
-        let v = travel.cross(u);
+        let MapFrame {
+            centre,
+            axes,
+            radius,
+            texel,
+            ..
+        } = MapFrame::new(groom, toward_light, n);
         let mut map = Self {
             n,
             centre,
-            axes: [u, v, travel],
+            axes,
             radius,
-            texel: 2.0 * radius / n as f64,
+            texel,
             first: vec![f32::INFINITY; n * n],
             sat: Vec::new(),
         };

@@ -230,9 +230,9 @@ pub struct CausticMoments {
 }
 
 /// Gauss–Legendre panels on each side of the cut, and points per panel, over γ ∈ [0, π/2]
-/// for the kept moments.
-const KEPT_PANELS: usize = 2;
-const KEPT_POINTS: usize = 8;
+/// for the kept moments (pub: the GPU's port integrates at the same nodes).
+pub const KEPT_PANELS: usize = 2;
+pub const KEPT_POINTS: usize = 8;
 
 impl CausticMoments {
     pub fn new(g: &Geometry, shape: TrtShape) -> Self {

@@ -1,0 +1,90 @@
+//! The GPU's deep opacity maps (crates/gpu/src/shadows) against frame/shadow.rs's (the
+//! reference, in f64): T̃ of every light at every visible point of the same drawing.
+//!
+//! Bounds: mean |ΔT̃| below 2e-5 and fewer than 0.1 % of the (point, light) pairs off by more
+//! than 0.05 (measured on lavapipe: mean 2.4e-7, no pair off by 0.05). The two build the same
+//! maps from the same frames; what differs is f32 against f64 in the samples' positions and
+//! depths, so a sample or a looked-up point near a texel edge or a layer boundary can fall on
+//! the other side and move T̃ by a texel's or a layer's share, and the fixed-point sums round
+//! each sample by at most half a unit (2^-20 of a fiber count here, coarser for large grooms).
+//! lavapipe rounds like the CPU; a hardware GPU contracts multiply-adds and may flip more
+//! samples, which the bounds' factor of 100 over the measured mean is for. They can tell:
+//! maps that ignored the lights' bandwidth (the filter of Ren et al. 2010's convolution) are
+//! 6e-2 off.
+
+mod common;
+
+use common::{cpu, gpu, load, spec};
+use cuticle_render::Timings;
+use cuticle_render::frame::shadow::transmittance;
+
+/// (mean |a − b|, share of entries off by more than 0.05).
+fn distance(a: &[f32], b: &[f32]) -> (f64, f64) {
+    assert_eq!(a.len(), b.len());
+    assert!(!a.is_empty(), "no shadows to compare");
+    let mean = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs() as f64)
+        .sum::<f64>()
+        / a.len() as f64;
+    let off = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| (*x - *y).abs() > 0.05)
+        .count();
+    (mean, off as f64 / a.len() as f64)
+}
+
+#[test]
+fn gpu_shadows_match_the_cpu_opacity_maps() {
+    let scene = load(spec(150, "default", 40));
+    let want = cpu().prepare(&scene, &mut Timings::default());
+    let frame = gpu().prepare(&scene).expect("GPU prepare");
+    assert_eq!(frame.prepared().points, want.points, "the drawings differ");
+    let got = gpu().shadows(&frame);
+    assert!(got.iter().all(|t| t.is_finite() && (0.0..=1.0).contains(t)));
+    // The maps shadow something: 7.4 % of the pairs lie below T̃ = 0.5 (the reference's).
+    let dark = want.shadow.iter().filter(|&&t| t < 0.5).count();
+    assert!(
+        dark * 20 > want.shadow.len(),
+        "{dark} of {} dark",
+        want.shadow.len()
+    );
+    let (mean, off) = distance(&got, &want.shadow);
+    eprintln!("GPU against CPU shadows: mean |ΔT| {mean:.2e}, {off:.2e} of pairs off by > 0.05");
+    assert!(mean < 2e-5, "mean |ΔT| {mean}");
+    assert!(off < 1e-3, "{off} of pairs off by more than 0.05");
+    // Unfiltered maps (every light treated as directional) are far from the GPU's.
+    let dirs: Vec<_> = want.lights.iter().map(|l| l.direction).collect();
+    let sharp = transmittance(
+        &scene.groom,
+        &want.points,
+        &dirs,
+        &vec![0.0; dirs.len()],
+        &scene.spec.shadows,
+    );
+    let (unfiltered, _) = distance(&got, &sharp);
+    eprintln!("unfiltered maps differ by mean |ΔT| {unfiltered:.2e}");
+    assert!(unfiltered > 100.0 * 2e-5, "{unfiltered}");
+}
+
+#[test]
+fn no_density_and_black_lights_cast_no_shadow() {
+    let mut s = spec(40, "default", 8);
+    s.shadows.density = 0.0;
+    let scene = load(s);
+    let frame = gpu().prepare(&scene).unwrap();
+    assert!(gpu().shadows(&frame).iter().all(|&t| t == 1.0));
+    // A black light gets no map (T̃ = 1), the others theirs, as the CPU renderer does.
+    let mut scene = load(spec(40, "default", 8));
+    scene.lights[3].coefficient = glam::Vec3::ZERO;
+    let want = cpu().prepare(&scene, &mut Timings::default());
+    let frame = gpu().prepare(&scene).unwrap();
+    let got = gpu().shadows(&frame);
+    let lights = scene.lights.len();
+    assert!(got.iter().skip(3).step_by(lights).all(|&t| t == 1.0));
+    let (mean, _) = distance(&got, &want.shadow);
+    assert!(mean < 2e-5, "{mean}");
+    assert_eq!(frame.passes().shadow_steps, 5);
+}
