@@ -45,7 +45,8 @@ struct Params {
     multiple: u32,
     sigma_scale: f32,
     min_z: f32,
-    _pad0: f32,
+    // Bit t set: single-scattering lobe t (R, TT, TRT) shades.
+    lobes: u32,
     _pad1: f32,
     _pad2: f32,
     grids: array<Grid, 9>,

@@ -53,7 +53,9 @@ pub struct ShadeParams {
     pub multiple: u32,
     pub sigma_scale: f32,
     pub min_z: f32,
-    pub _pad: [f32; 3],
+    /// Bit t set: single-scattering lobe t (R, TT, TRT) shades ([`lobe_bits`]).
+    pub lobes: u32,
+    pub _pad: [f32; 2],
     pub grids: [GridDesc; slot::COUNT],
 }
 
@@ -99,4 +101,14 @@ pub fn workgroups(points: usize) -> (u32, u32) {
     let groups = (points as u32).div_ceil(WORKGROUP);
     let x = groups.clamp(1, 65_535);
     (x, groups.div_ceil(x))
+}
+
+/// The scene's lobe mask as `ShadeParams::lobes`: bit t for lobe t of [R, TT, TRT].
+pub fn lobe_bits(lobes: cuticle_render::Lobes) -> u32 {
+    lobes
+        .mask()
+        .iter()
+        .enumerate()
+        .map(|(t, &on)| u32::from(on) << t)
+        .sum()
 }
