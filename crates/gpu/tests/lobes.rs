@@ -40,6 +40,9 @@ fn lobe_masks_match_the_cpu() {
         assert!(e < 5e-3 && worst < 1e-2, "{name}: RMSE {e}, worst {worst}");
         // The mask reached the shader: the view is far from the all-lobes image.
         let moved = relative_rmse(&got, &all, &mask);
-        assert!(moved > 10.0 * 5e-3, "{name}: moved only {moved} from all lobes");
+        assert!(
+            moved > 10.0 * 5e-3,
+            "{name}: moved only {moved} from all lobes"
+        );
     }
 }
