@@ -306,6 +306,7 @@ impl GpuRenderer {
         params.cutoff = spec.shadows.cutoff as f32;
         params.m = spec.quadrature as u32;
         params.multiple = spec.multiple as u32;
+        params.lobes = shading::lobe_bits(spec.lobes);
     }
 
     /// Stages 4–5 for the scene's current hair parameters: uploads what they changed (the lobe

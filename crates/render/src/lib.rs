@@ -40,4 +40,4 @@ pub use frame::renderer::{Image, Prepared, Renderer, Timings, WorldLight};
 pub use frame::shadow::ShadowOptions;
 pub use scene::camera::Camera;
 pub use scene::hair::HairParams;
-pub use scene::{Method, Scene, SceneError, SceneSpec};
+pub use scene::{Lobes, Method, Scene, SceneError, SceneSpec};

@@ -3,12 +3,13 @@
 //! first frame (the preview) and to its full-quality frame, for edits of the hair (absorption,
 //! then β_R: shading only) and for camera moves (preparation again). Medians of `--edits K`.
 //!
-//! `cargo bench -p cuticle-view --bench latency -- --edits 5`
+//! `cargo bench -p cuticle-view --bench latency -- --edits 5 [--device cpu|gpu|auto]` (the CPU
+//! renderer unless `--device` says otherwise).
 
 use cuticle_render::{Renderer, Scene, SceneSpec};
 use cuticle_view::look::Look;
 use cuticle_view::orbit;
-use cuticle_view::shading::cpu::CpuShading;
+use cuticle_view::shading::Backends;
 use cuticle_view::worker::{Quality, Report, Request, Worker};
 use std::sync::mpsc::channel;
 use std::time::{Duration, Instant};
@@ -45,14 +46,25 @@ fn main() {
     let edits = arg("--edits", 5).max(1);
     let look = Look::from_scene(Scene::load(spec, None).expect("the default scene loads"));
     let renderer = Renderer::new();
-    let (tx, rx) = channel::<()>();
-    let worker = Worker::start(
-        Box::new(CpuShading::new(renderer.clone())),
-        Box::new(CpuShading::new(renderer)),
-        move || {
-            let _ = tx.send(());
-        },
+    let args: Vec<String> = std::env::args().collect();
+    let device = args
+        .iter()
+        .position(|a| a == "--device")
+        .and_then(|i| args.get(i + 1))
+        .map_or(Ok(cuticle_gpu::Choice::Cpu), |d| d.parse())
+        .expect("--device takes auto, gpu or cpu");
+    let backends = Backends::choose(device, &renderer).expect("the device opens");
+    println!(
+        "{} strands at {}x{}, shading on {}",
+        look.groom.strand_count(),
+        look.spec.width,
+        look.spec.height,
+        backends.full.backend()
     );
+    let (tx, rx) = channel::<()>();
+    let worker = Worker::start(backends.preview, backends.full, move || {
+        let _ = tx.send(());
+    });
     let mut id = 0;
     let mut run = |look: &Look| -> Latency {
         id += 1;

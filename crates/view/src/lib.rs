@@ -8,7 +8,7 @@
 //! - [`look`]: the edited scene and its absorption layers (paint, all strands, the groom's own).
 //! - [`worker`]: the render thread: latest request only, preview then full quality, stale
 //!   frames cancelled.
-//! - [`shading`]: the back-end trait the worker drives, and its CPU implementation.
+//! - [`shading`]: the back-end trait the worker drives, and its CPU and GPU implementations.
 //! - [`jobs`]: background loads: the first scene, grooms, environment maps and SRBF re-fits.
 //! - [`paint`]: the brush, picking strands through the visibility buffer, undo history.
 //! - [`orbit`]: camera orbit, pan, zoom. [`presets`]: named hair colours.
@@ -30,8 +30,13 @@ pub use app::ViewApp;
 pub use options::ViewOptions;
 
 /// Opens the window and runs it until it is closed; with `--screenshot`, until the screenshot
-/// is written (an error loading the scene or writing the file is returned).
+/// is written (an error choosing the device, loading the scene or writing the file is
+/// returned).
 pub fn run(options: ViewOptions) -> anyhow::Result<()> {
+    let renderer = cuticle_render::Renderer::new();
+    let backends = shading::Backends::choose(options.device, &renderer)
+        .map_err(|e| anyhow::anyhow!("--device: {e}"))?;
+    let backends = std::sync::Mutex::new(Some(backends));
     let size = app::window_size(&options.spec);
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
@@ -45,7 +50,19 @@ pub fn run(options: ViewOptions) -> anyhow::Result<()> {
     eframe::run_native(
         "cuticle view",
         native,
-        Box::new(move |cc| Ok(Box::new(ViewApp::new(&cc.egui_ctx, options, kept)))),
+        Box::new(move |cc| {
+            let backends = backends
+                .lock()
+                .ok()
+                .and_then(|mut b| b.take())
+                .ok_or("the window was created twice")?;
+            Ok(Box::new(ViewApp::with_backends(
+                &cc.egui_ctx,
+                options,
+                kept,
+                backends,
+            )))
+        }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the window: {e}"))?;
     outcome.result()

@@ -1,5 +1,6 @@
 //! What `cuticle view` is started with.
 
+use cuticle_gpu::Choice;
 use cuticle_light::SrbfLight;
 use cuticle_render::SceneSpec;
 use std::path::PathBuf;
@@ -17,6 +18,8 @@ pub struct ViewOptions {
     pub after_frames: usize,
     /// Where Save and the screenshot button write.
     pub out: PathBuf,
+    /// Which back end shades (`--device`; the CPU renderer unless asked).
+    pub device: Choice,
 }
 
 impl Default for ViewOptions {
@@ -27,6 +30,7 @@ impl Default for ViewOptions {
             screenshot: None,
             after_frames: 2,
             out: PathBuf::from("out/view"),
+            device: Choice::Cpu,
         }
     }
 }

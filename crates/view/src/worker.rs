@@ -59,12 +59,14 @@ pub struct Frame {
     pub latency_s: f64,
     /// Which back end shaded it.
     pub backend: String,
+    /// Strand records its shading re-uploaded for paint (the GPU back end).
+    pub strands_updated: usize,
 }
 
 /// What the worker reports.
 pub enum Report {
     Frame(Box<Frame>),
-    /// A frame could not be made (the message of a panic in the renderer).
+    /// A frame could not be made (the back end's error, or the message of a panic in it).
     Failed {
         id: u64,
         message: String,
@@ -117,16 +119,17 @@ impl Slot {
     }
 
     /// Prepares `scene` unless the kept preparation serves; the seconds it took.
-    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> f64 {
+    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> Result<f64, String> {
         let key = PrepareKey::of(scene, revisions);
         if self.key.as_ref() == Some(&key) {
-            return 0.0;
+            return Ok(0.0);
         }
         let start = Instant::now();
-        self.shading.prepare(scene);
+        self.key = None;
+        self.shading.prepare(scene)?;
         self.strands = Arc::new(self.shading.strands());
         self.key = Some(key);
-        start.elapsed().as_secs_f64()
+        Ok(start.elapsed().as_secs_f64())
     }
 }
 
@@ -279,29 +282,39 @@ impl Loop {
     fn serve(&mut self, request: &Request) {
         let preview = preview_scene(&request.scene, self.scale);
         let never = AtomicBool::new(false);
-        if let Some(frame) = render(
+        match render(
             &mut self.preview,
             &preview,
             request,
             Quality::Preview,
             &never,
         ) {
-            self.adapt_scale(frame.shade_s);
-            self.send(Report::Frame(Box::new(frame)));
+            Ok(Some(frame)) => {
+                self.adapt_scale(frame.shade_s);
+                self.send(Report::Frame(Box::new(frame)));
+            }
+            Ok(None) => {}
+            Err(message) => return self.fail(request.id, message),
         }
         if request.interacting || self.newer_waiting() {
             return;
         }
         let cancel = &self.mailbox.cancel;
-        if let Some(frame) = render(
+        match render(
             &mut self.full,
             &request.scene,
             request,
             Quality::Full,
             cancel,
         ) {
-            self.send(Report::Frame(Box::new(frame)));
+            Ok(Some(frame)) => self.send(Report::Frame(Box::new(frame))),
+            Ok(None) => {}
+            Err(message) => self.fail(request.id, message),
         }
+    }
+
+    fn fail(&self, id: u64, message: String) {
+        self.send(Report::Failed { id, message });
     }
 
     /// Keeps the preview's shading near its budget by changing its size.
@@ -314,18 +327,20 @@ impl Loop {
     }
 }
 
-/// One frame of `scene` by `slot`'s back end.
+/// One frame of `scene` by `slot`'s back end (`None` when cancelled).
 fn render(
     slot: &mut Slot,
     scene: &Scene,
     request: &Request,
     quality: Quality,
     cancel: &AtomicBool,
-) -> Option<Frame> {
-    let prepare_s = slot.prepare(scene, request.revisions);
+) -> Result<Option<Frame>, String> {
+    let prepare_s = slot.prepare(scene, request.revisions)?;
     let start = Instant::now();
-    let image = slot.shading.shade(scene, cancel)?;
-    Some(Frame {
+    let Some(image) = slot.shading.shade(scene, cancel)? else {
+        return Ok(None);
+    };
+    Ok(Some(Frame {
         id: request.id,
         quality,
         image,
@@ -334,5 +349,6 @@ fn render(
         shade_s: start.elapsed().as_secs_f64(),
         latency_s: request.issued.elapsed().as_secs_f64(),
         backend: slot.shading.backend(),
-    })
+        strands_updated: slot.shading.strands_updated(),
+    }))
 }

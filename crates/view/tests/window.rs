@@ -1,6 +1,9 @@
 //! The window driven headlessly (egui_kittest on its wgpu renderer; lavapipe where no GPU is):
 //! a small scene (300 strands, 160 × 120, 8 SRBF lights) so that each test runs in seconds.
+//! The slider and paint tests run on both back ends: the CPU renderer and the GPU one
+//! (`--device gpu`, lavapipe here).
 
+use cuticle_gpu::Choice;
 use cuticle_render::{Image, SceneSpec};
 use cuticle_view::ViewOptions;
 use cuticle_view::app::{Outcome, ViewApp};
@@ -27,9 +30,15 @@ fn spec() -> SceneSpec {
 }
 
 fn open(spec: SceneSpec, out: &Path) -> Harness<'static, Option<ViewApp>> {
+    open_on(spec, out, Choice::Cpu)
+}
+
+/// The window on the back end `device` chooses.
+fn open_on(spec: SceneSpec, out: &Path, device: Choice) -> Harness<'static, Option<ViewApp>> {
     let options = ViewOptions {
         spec,
         out: out.to_path_buf(),
+        device,
         ..ViewOptions::default()
     };
     let mut h = Harness::builder()
@@ -202,10 +211,9 @@ fn opens_on_the_default_scene_and_matches_its_snapshot() {
 
 /// More eumelanin darkens the hair; more β_R widens the highlight (more hair pixels above half
 /// the brightest on black hair, single scattering only); the background stays bit for bit.
-#[test]
-fn sliders_change_the_image_as_the_parameter_should() {
+fn sliders_change_the_image_as_the_parameter_should(device: Choice) {
     let dir = tempfile::tempdir().unwrap();
-    let mut h = open(spec(), dir.path());
+    let mut h = open_on(spec(), dir.path(), device);
     click(&mut h, "melanin");
     h.step();
     settle(&mut h);
@@ -271,13 +279,23 @@ fn stroke(h: &mut Harness<'static, Option<ViewApp>>, a: egui::Pos2, b: egui::Pos
     settle(h);
 }
 
+#[test]
+fn sliders_change_the_image_as_the_parameter_should_on_the_cpu() {
+    sliders_change_the_image_as_the_parameter_should(Choice::Cpu);
+}
+
+#[test]
+fn sliders_change_the_image_as_the_parameter_should_on_the_gpu() {
+    sliders_change_the_image_as_the_parameter_should(Choice::Gpu);
+}
+
 /// A stroke across part of the hair recolours the strands under it and no others (pixels
 /// showing no painted strand keep their bits); undo gives back the image exactly and redo the
-/// painted one; the look saved and reopened renders the same image.
-#[test]
-fn paint_undo_and_save_reopen() {
+/// painted one; the look saved and reopened renders the same image. On the GPU, the stroke's
+/// full frame re-uploads the painted strands' records only.
+fn paint_undo_and_save_reopen(device: Choice) {
     let dir = tempfile::tempdir().unwrap();
-    let mut h = open(spec(), dir.path());
+    let mut h = open_on(spec(), dir.path(), device);
     let (before, strands) = frame(&h);
     click(&mut h, "brush");
     h.step();
@@ -334,6 +352,14 @@ fn paint_undo_and_save_reopen() {
         changed as f64 > 0.9 * touched as f64,
         "{changed} of {touched} pixels of painted strands changed"
     );
+    let uploaded = app(&h).full.as_ref().unwrap().strands_updated;
+    if device == Choice::Gpu {
+        assert!(
+            uploaded > 0 && uploaded <= painted.len(),
+            "{uploaded} strand records uploaded for {} painted strands",
+            painted.len()
+        );
+    }
 
     click(&mut h, "undo");
     h.step();
@@ -349,7 +375,7 @@ fn paint_undo_and_save_reopen() {
     assert!(app(&h).errors.is_empty(), "{:?}", app(&h).errors);
     let scene = dir.path().join("look/scene.toml");
     let spec = SceneSpec::from_toml_file(&scene).expect("the saved scene reads");
-    let reopened = open(spec, &dir.path().join("again"));
+    let reopened = open_on(spec, &dir.path().join("again"), device);
     let (again, _) = frame(&reopened);
     assert_eq!((again.width, again.height), (after.width, after.height));
     let worst = again
@@ -359,6 +385,145 @@ fn paint_undo_and_save_reopen() {
         .map(|(a, b)| (*a - *b).abs().max_element() / b.max_element().max(1e-3))
         .fold(0.0, f64::max);
     assert!(worst < 1e-6, "reopened image differs by {worst} relative");
+}
+
+#[test]
+fn paint_undo_and_save_reopen_on_the_cpu() {
+    paint_undo_and_save_reopen(Choice::Cpu);
+}
+
+#[test]
+fn paint_undo_and_save_reopen_on_the_gpu() {
+    paint_undo_and_save_reopen(Choice::Gpu);
+}
+
+/// √(Σ|a − b|² / Σ|b|²) over `pixels` (crates/gpu/tests/parity.rs's metric).
+fn relative_rmse(a: &Image, b: &Image, pixels: &[usize]) -> f64 {
+    let num: f64 = pixels
+        .iter()
+        .map(|&k| (a.pixels[k] - b.pixels[k]).length_squared())
+        .sum();
+    let den: f64 = pixels.iter().map(|&k| b.pixels[k].length_squared()).sum();
+    assert!(den > 0.0, "no hair pixels");
+    (num / den).sqrt()
+}
+
+/// The largest channel difference relative to the brightest channel of `b`.
+fn worst_relative(a: &Image, b: &Image) -> f64 {
+    let brightest = b.pixels.iter().map(|p| p.max_element()).fold(0.0, f64::max);
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(x, y)| (*x - *y).abs().max_element())
+        .fold(0.0, f64::max)
+        / brightest
+}
+
+/// The window on the GPU back end (lavapipe here) shows the CPU's image within the parity bound
+/// of crates/gpu/tests/parity.rs (relative RMSE over hair pixels below 5e-3, no pixel channel
+/// off by more than 1e-2 of the brightest), and its status line says which back end shades
+/// and the frame time.
+#[test]
+fn gpu_back_end_matches_the_cpu() {
+    let dir = tempfile::tempdir().unwrap();
+    let cpu = open_on(spec(), dir.path(), Choice::Cpu);
+    let gpu = open_on(spec(), dir.path(), Choice::Gpu);
+    assert!(app(&gpu).on_gpu() && !app(&cpu).on_gpu());
+    let (want, strands) = frame(&cpu);
+    let (got, _) = frame(&gpu);
+    let (_, hair) = background_and_hair(&strands);
+    let e = relative_rmse(&got, &want, &hair);
+    let worst = worst_relative(&got, &want);
+    assert!(e < 5e-3 && worst < 1e-2, "RMSE {e}, worst {worst}");
+    assert!(
+        got != want,
+        "the GPU image is the GPU's own (f32), not the CPU's"
+    );
+    assert!(gpu.query_by_label_contains("GPU, ").is_some());
+    assert!(cpu.query_by_label_contains("CPU, ").is_some());
+    assert!(gpu.query_by_label_contains("ms (prepare").is_some());
+}
+
+/// Turning the TT lobe off (a debug view) changes the hair and leaves the background bit for
+/// bit; turning it back on restores the image exactly.
+#[test]
+fn lobe_toggle_changes_the_hair_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    let (all, strands) = frame(&h);
+    click(&mut h, "TT");
+    settle(&mut h);
+    assert!(!app(&h).look.as_ref().unwrap().spec.lobes.tt);
+    let (no_tt, _) = frame(&h);
+    let (bg, hair) = background_and_hair(&strands);
+    let moved = relative_rmse(&no_tt, &all, &hair);
+    assert!(moved > 0.02, "TT off moved the hair by {moved} only");
+    assert!(mean_luminance(&no_tt, &hair) < mean_luminance(&all, &hair));
+    for &k in &bg {
+        assert_eq!(all.pixels[k], no_tt.pixels[k], "background pixel {k}");
+    }
+    click(&mut h, "TT");
+    settle(&mut h);
+    assert!(frame(&h).0 == all, "TT back on restores the image");
+}
+
+/// A new number of SRBF lights is fitted in the background (the fit is a load with its
+/// progress while it runs) and replaces the lights: the image changes, the background too.
+#[test]
+fn light_count_refits_in_the_background() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    let (before, _) = frame(&h);
+    assert_eq!(app(&h).look.as_ref().unwrap().lights.len(), 8);
+    h.get_by_role_and_label(egui::accesskit::Role::Slider, "SRBF lights")
+        .set_value_accesskit(3.0);
+    h.step();
+    let (what, progress) = app(&h).loading().expect("the fit runs in the background");
+    assert!(
+        what.contains("3 SRBF lights") && (0.0..=1.0).contains(&progress),
+        "{what}"
+    );
+    settle(&mut h);
+    let look = app(&h).look.as_ref().unwrap();
+    assert_eq!(look.lights.len(), 3);
+    assert!(look.fit_error.is_some_and(|e| e.is_finite() && e > 0.0));
+    assert!(frame(&h).0 != before, "the image shows the new lights");
+}
+
+/// The screenshot button writes the full-quality frame as PNG (tone-mapped, each channel the
+/// tone map of the frame's) and EXR (linear, the frame's pixels in f32).
+#[test]
+fn screenshot_writes_png_and_exr() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut h = open(spec(), dir.path());
+    let (img, _) = frame(&h);
+    click(&mut h, "screenshot");
+    assert!(app(&h).errors.is_empty(), "{:?}", app(&h).errors);
+    let png = image::open(dir.path().join("frame-0001.png"))
+        .expect("the PNG reads")
+        .to_rgb8();
+    let tone = cuticle_light::ToneMap::for_map(&app(&h).look.as_ref().unwrap().env);
+    assert_eq!(png.dimensions(), (img.width as u32, img.height as u32));
+    for (k, p) in img.pixels.iter().enumerate() {
+        let got = png
+            .get_pixel((k % img.width) as u32, (k / img.width) as u32)
+            .0;
+        assert_eq!(got, tone.apply(p.as_vec3()), "PNG pixel {k}");
+    }
+    let width = img.width;
+    let exr = exr::prelude::read_first_rgba_layer_from_file(
+        dir.path().join("frame-0001.exr"),
+        |size, _| vec![[0f32; 3]; size.width() * size.height()],
+        move |px: &mut Vec<[f32; 3]>, pos, (r, g, b, _): (f32, f32, f32, f32)| {
+            px[pos.y() * width + pos.x()] = [r, g, b];
+        },
+    )
+    .expect("the EXR reads");
+    let px = &exr.layer_data.channel_data.pixels;
+    assert_eq!(px.len(), img.pixels.len());
+    for (k, (got, want)) in px.iter().zip(&img.pixels).enumerate() {
+        assert_eq!(*got, want.as_vec3().to_array(), "EXR pixel {k}");
+    }
 }
 
 /// Bad input — a NaN typed as σ_a, a missing and a corrupt `.hair`, a missing and a corrupt

@@ -21,6 +21,10 @@ pub struct Args {
     /// Where the window's Save and screenshot buttons write.
     #[arg(long, default_value = "out/view")]
     out: PathBuf,
+    /// auto (a hardware GPU where one exists, else the CPU), gpu (any adapter, a software one
+    /// included) or cpu.
+    #[arg(long, default_value = "auto")]
+    device: cuticle_gpu::Choice,
 }
 
 /// Frames `--screenshot` waits: a few let the interface settle; a billion never end.
@@ -42,6 +46,17 @@ pub fn run(args: Args) -> Result<()> {
             "the window shades with srbf or brute; --method path is for `cuticle render`"
         );
     }
+    if spec.method != cuticle_render::Method::Srbf && args.device == cuticle_gpu::Choice::Gpu {
+        anyhow::bail!(
+            "--method {:?} runs on the CPU only: use --device cpu or auto",
+            spec.method
+        );
+    }
+    // The brute force shades on the CPU (auto never takes the GPU for it).
+    let device = match spec.method {
+        cuticle_render::Method::Srbf => args.device,
+        _ => cuticle_gpu::Choice::Cpu,
+    };
     if let Some(path) = &args.screenshot
         && let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
         && !dir.is_dir()
@@ -58,5 +73,6 @@ pub fn run(args: Args) -> Result<()> {
         screenshot: args.screenshot,
         after_frames: args.after_frames,
         out: args.out,
+        device,
     })
 }

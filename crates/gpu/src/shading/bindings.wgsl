@@ -47,7 +47,8 @@ struct Params {
     min_z: f32,
     glint_scale: f32,
     caustic_limit: f32,
-    _pad0: f32,
+    // Bit t set: single-scattering lobe t (R, TT, TRT) shades.
+    lobes: u32,
     grids: array<Grid, 9>,
 }
 

@@ -58,7 +58,8 @@ pub struct ShadeParams {
     /// k_G and Δh_M of Marschner 2003's glints (the TRT fit's [`TrtShape`]).
     pub glint_scale: f32,
     pub caustic_limit: f32,
-    pub _pad: f32,
+    /// Bit t set: single-scattering lobe t (R, TT, TRT) shades ([`lobe_bits`]).
+    pub lobes: u32,
     pub grids: [GridDesc; slot::COUNT],
 }
 
@@ -123,6 +124,16 @@ pub fn workgroups(points: usize) -> (u32, u32) {
     let groups = (points as u32).div_ceil(WORKGROUP);
     let x = groups.clamp(1, 65_535);
     (x, groups.div_ceil(x))
+}
+
+/// The scene's lobe mask as `ShadeParams::lobes`: bit t for lobe t of [R, TT, TRT].
+pub fn lobe_bits(lobes: cuticle_render::Lobes) -> u32 {
+    lobes
+        .mask()
+        .iter()
+        .enumerate()
+        .map(|(t, &on)| u32::from(on) << t)
+        .sum()
 }
 
 #[cfg(test)]

@@ -13,10 +13,10 @@ use crate::frame::progress::{Counter, Progress};
 use crate::frame::raster::{Coverage, EMPTY, rasterize};
 use crate::frame::shadow::{ShadowOptions, transmittance};
 use crate::scene::camera::View;
-use crate::scene::{Method, Scene, light_to_world};
+use crate::scene::{Lobes, Method, Scene, light_to_world};
 use crate::srbf::cg_lobes::TrtShape;
 use crate::srbf::dual_scattering::Dual;
-use crate::srbf::single_scattering::{LocalLight, ShadingFiber, shade};
+use crate::srbf::single_scattering::{LocalLight, ShadingFiber, modes, shade};
 use crate::tables::back_scattering::BackScatteringTables;
 use crate::tables::cg_integrals::Tables;
 use crate::tables::half_circle::HalfCircle;
@@ -253,6 +253,7 @@ impl Renderer {
                 lights: &prepared.lights,
                 shadows: scene.spec.shadows,
                 m: scene.spec.quadrature,
+                shown: scene.spec.lobes,
             }),
             (None, half) => FrameShader::Brute(BruteFrame {
                 lights: prepared
@@ -405,6 +406,8 @@ struct SrbfFrame<'a> {
     lights: &'a [WorldLight],
     shadows: ShadowOptions,
     m: usize,
+    /// The single-scattering lobes that shade (a debug view).
+    shown: Lobes,
 }
 
 impl SrbfFrame<'_> {
@@ -441,7 +444,16 @@ impl SrbfFrame<'_> {
             params: point.fiber,
             lobes: &lobes,
         };
-        let single = shade(self.tables, fiber, ao.theta, ao.phi, lit, self.m);
+        let single = match self.shown {
+            Lobes::ALL => shade(self.tables, fiber, ao.theta, ao.phi, lit, self.m),
+            shown => lit
+                .iter()
+                .filter(|l| l.radiance != DVec3::ZERO)
+                .map(|l| {
+                    l.radiance * shown.sum(modes(self.tables, fiber, ao.theta, ao.phi, l, self.m))
+                })
+                .sum(),
+        };
         let multiple = self.dual.as_ref().map_or(DVec3::ZERO, |d| {
             d.shade(fiber, ao.theta, ao.phi, local, point.shadow)
         });

@@ -62,6 +62,8 @@ pub struct SceneSpec {
     pub quadrature: usize,
     /// Whether to add dual-scattering multiple scattering.
     pub multiple: bool,
+    /// Which single-scattering lobes shade (a debug view; all by default).
+    pub lobes: Lobes,
     /// Subsamples per pixel along each axis.
     pub supersampling: usize,
     pub shadows: ShadowOptions,
@@ -85,10 +87,51 @@ impl Default for SceneSpec {
             method: Method::Srbf,
             quadrature: 4,
             multiple: true,
+            lobes: Lobes::ALL,
             supersampling: 3,
             shadows: ShadowOptions::default(),
             brute_grid: 16,
         }
+    }
+}
+
+/// The single-scattering lobes that shade (Marschner et al. 2003's R, TT, TRT): a lobe off
+/// contributes zero, so the three alone sum to all three. A debug view of the SRBF method;
+/// multiple scattering has its own switch ([`SceneSpec::multiple`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Lobes {
+    pub r: bool,
+    pub tt: bool,
+    pub trt: bool,
+}
+
+impl Lobes {
+    pub const ALL: Self = Self {
+        r: true,
+        tt: true,
+        trt: true,
+    };
+
+    /// As a mask over [R, TT, TRT].
+    pub fn mask(&self) -> [bool; 3] {
+        [self.r, self.tt, self.trt]
+    }
+
+    /// The sum of the lobes that are on.
+    pub fn sum(&self, modes: [DVec3; 3]) -> DVec3 {
+        modes
+            .iter()
+            .zip(self.mask())
+            .filter(|(_, on)| *on)
+            .map(|(m, _)| *m)
+            .sum()
+    }
+}
+
+impl Default for Lobes {
+    fn default() -> Self {
+        Self::ALL
     }
 }
 
@@ -233,6 +276,11 @@ impl SceneSpec {
             STRANDS.check_usize(self.strands)?;
         }
         ENV_ROTATE_DEG.check(self.env_rotate_deg)?;
+        if self.lobes != Lobes::ALL && self.method != Method::Srbf {
+            return Err(SceneError::Invalid(
+                "lobes (per-lobe debug views) apply to the srbf method only".into(),
+            ));
+        }
         if let Some(camera) = &self.camera {
             camera.validate()?;
         }

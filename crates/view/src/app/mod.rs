@@ -12,7 +12,7 @@ use crate::look::{Look, Revisions};
 use crate::options::ViewOptions;
 use crate::paint::brush::Brush;
 use crate::paint::history::{History, PaintLayer};
-use crate::shading::cpu::CpuShading;
+use crate::shading::Backends;
 use crate::worker::{Frame, Quality, Report, Request, Worker};
 use cuticle_groom::Absorption;
 use cuticle_light::ToneMap;
@@ -181,18 +181,37 @@ pub struct ViewApp {
     /// UI frames since the first full frame was shown (for `--screenshot`).
     frames_after_full: usize,
     screenshot_sent: bool,
+    /// The back ends shade on the GPU.
+    gpu: bool,
 }
 
 impl ViewApp {
-    /// The app, starting to load `options.spec` in the background.
+    /// The app on the back ends `options.device` asks for (the CPU renderer, with the error
+    /// shown, when there are none), starting to load `options.spec` in the background.
     pub fn new(ctx: &egui::Context, options: ViewOptions, outcome: Outcome) -> Self {
         let renderer = Renderer::new();
+        let (backends, error) = match Backends::choose(options.device, &renderer) {
+            Ok(b) => (b, None),
+            Err(e) => (
+                Backends::cpu(&renderer),
+                Some(format!("--device: {e}; shading on the CPU")),
+            ),
+        };
+        let mut app = Self::with_backends(ctx, options, outcome, backends);
+        app.errors.extend(error);
+        app
+    }
+
+    /// The app on `backends`, starting to load `options.spec` in the background.
+    pub fn with_backends(
+        ctx: &egui::Context,
+        options: ViewOptions,
+        outcome: Outcome,
+        backends: Backends,
+    ) -> Self {
         let notify = repaint(ctx);
-        let worker = Worker::start(
-            Box::new(CpuShading::new(renderer.clone())),
-            Box::new(CpuShading::new(renderer)),
-            notify,
-        );
+        let gpu = backends.gpu;
+        let worker = Worker::start(backends.preview, backends.full, notify);
         let spec = options.spec.clone();
         let controls = Controls {
             tool: Tool::Camera,
@@ -234,7 +253,13 @@ impl ViewApp {
             image_rect: None,
             frames_after_full: 0,
             screenshot_sent: false,
+            gpu,
         }
+    }
+
+    /// Whether the GPU back end shades (it renders the SRBF method only).
+    pub fn on_gpu(&self) -> bool {
+        self.gpu
     }
 
     /// Whether nothing is loading or rendering and the full frame of the current look is shown.

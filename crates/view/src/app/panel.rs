@@ -3,6 +3,8 @@
 
 use crate::app::{AbsorptionEdit, Tool, ViewApp};
 use crate::presets::PRESETS;
+use cuticle_fiber::ranges::{CountRange, End, Range};
+use cuticle_render::scene;
 use cuticle_render::scene::hair::ParamRange;
 use cuticle_render::{HairParams, Method};
 use egui::{Slider, Ui};
@@ -27,6 +29,32 @@ fn param(ui: &mut Ui, value: &mut f64, r: ParamRange, label: &str, unit: &str, w
     ui.add(s)
         .on_hover_text(format!("{what}; {r} {unit}"))
         .changed()
+}
+
+/// A logarithmic slider over a validated scene count, its unit and range in the tooltip.
+fn count(ui: &mut Ui, value: &mut usize, r: CountRange, label: &str, unit: &str, what: &str) {
+    ui.add(
+        Slider::new(value, r.min as usize..=r.max as usize)
+            .logarithmic(r.max > 64 * r.min.max(1))
+            .text(label)
+            .suffix(format!(" {unit}")),
+    )
+    .on_hover_text(format!("{what}; {r} {unit}"));
+}
+
+/// A slider over a validated scene range (logarithmic where it spans decades).
+fn ranged(ui: &mut Ui, value: &mut f64, r: Range, label: &str, unit: &str, what: &str) {
+    let end = |e: End| match e {
+        End::Closed(v) | End::Open(v) => v,
+    };
+    let (lo, hi) = (end(r.min), end(r.max));
+    ui.add(
+        Slider::new(value, lo..=hi)
+            .logarithmic(hi > 100.0 * lo.max(1e-300) && lo >= 0.0)
+            .text(label)
+            .suffix(format!(" {unit}")),
+    )
+    .on_hover_text(format!("{what}; {r} {unit}"));
 }
 
 pub fn show(app: &mut ViewApp, ui: &mut Ui) {
@@ -266,6 +294,7 @@ fn absorption(app: &mut ViewApp, ui: &mut Ui) {
 }
 
 fn scattering(app: &mut ViewApp, ui: &mut Ui) {
+    let gpu = app.on_gpu();
     let Some(look) = &mut app.look else { return };
     let spec = &mut look.spec;
     egui::CollapsingHeader::new("Scattering and shadows")
@@ -273,22 +302,63 @@ fn scattering(app: &mut ViewApp, ui: &mut Ui) {
         .show(ui, |ui| {
             ui.checkbox(&mut spec.multiple, "multiple scattering (dual scattering)");
             ui.horizontal(|ui| {
-                ui.radio_value(&mut spec.method, Method::Srbf, "SRBF");
-                ui.radio_value(&mut spec.method, Method::Brute, "brute force (slow)");
+                ui.label("lobes:");
+                let srbf = spec.method == Method::Srbf;
+                let l = &mut spec.lobes;
+                for (on, name) in [(&mut l.r, "R"), (&mut l.tt, "TT"), (&mut l.trt, "TRT")] {
+                    ui.add_enabled(srbf, egui::Checkbox::new(on, name))
+                        .on_hover_text("debug view: single scattering of the lobes ticked only")
+                        .on_disabled_hover_text("the lobe views are of the SRBF method");
+                }
             });
-            ui.add(Slider::new(&mut spec.quadrature, 2..=16).text("quadrature m"))
-                .on_hover_text("segments of the linear quadrature (Xu et al. 2011 §4.2.2)");
-            ui.add(Slider::new(&mut spec.supersampling, 1..=4).text("subsamples per axis"));
-            let sh = &mut spec.shadows;
-            ui.add(Slider::new(&mut sh.density, 0.0..=4.0).text("shadow density"))
-                .on_hover_text("multiplies the optical depth (1 physical, 0 none)");
-            ui.add(
-                Slider::new(&mut sh.resolution, 16..=1024)
-                    .logarithmic(true)
-                    .text("shadow map texels"),
+            ui.horizontal(|ui| {
+                ui.radio_value(&mut spec.method, Method::Srbf, "SRBF");
+                ui.add_enabled_ui(!gpu, |ui| {
+                    ui.radio_value(&mut spec.method, Method::Brute, "brute force (slow)")
+                        .on_disabled_hover_text("the GPU back end renders the SRBF method only");
+                });
+            });
+            count(
+                ui,
+                &mut spec.quadrature,
+                scene::QUADRATURE,
+                "quadrature m",
+                "segments",
+                "segments of the linear quadrature (Xu et al. 2011 §4.2.2)",
             );
-            ui.add(Slider::new(&mut sh.cutoff, 0.0..=0.01).text("shadow cutoff"))
-                .on_hover_text("transmittance below which a light adds no direct light");
+            count(
+                ui,
+                &mut spec.supersampling,
+                scene::SUPERSAMPLING,
+                "subsamples",
+                "per axis",
+                "subsamples per pixel along each axis",
+            );
+            let sh = &mut spec.shadows;
+            ranged(
+                ui,
+                &mut sh.density,
+                scene::SHADOW_DENSITY,
+                "hair density",
+                "× optical depth",
+                "multiplies the opacity maps' optical depth (1 physical, 0 no shadows)",
+            );
+            count(
+                ui,
+                &mut sh.resolution,
+                scene::SHADOW_RESOLUTION,
+                "shadow map",
+                "texels",
+                "texels along each side of a light's opacity map",
+            );
+            ranged(
+                ui,
+                &mut sh.cutoff,
+                scene::SHADOW_CUTOFF,
+                "shadow cutoff",
+                "T̃",
+                "transmittance below which a light adds no direct light",
+            );
         });
 }
 
@@ -306,11 +376,16 @@ fn lighting(app: &mut ViewApp, ui: &mut Ui) {
             });
             if let Some(look) = &mut app.look {
                 let before = look.spec.env_rotate_deg;
-                let r = ui.add(
-                    Slider::new(&mut look.spec.env_rotate_deg, -180.0..=180.0)
-                        .text("rotation")
-                        .suffix(" °"),
-                );
+                let r = ui
+                    .add(
+                        Slider::new(&mut look.spec.env_rotate_deg, -180.0..=180.0)
+                            .text("rotation")
+                            .suffix(" °"),
+                    )
+                    .on_hover_text(format!(
+                        "rotation of the map about the up axis (the lights re-fitted after); {}",
+                        scene::ENV_ROTATE_DEG
+                    ));
                 if r.changed() && look.spec.env_rotate_deg.is_finite() {
                     rotate(look, look.spec.env_rotate_deg - before);
                 }
@@ -318,11 +393,19 @@ fn lighting(app: &mut ViewApp, ui: &mut Ui) {
                     refit = Some(true);
                 }
             }
-            let r = ui.add(
-                Slider::new(&mut app.controls.lights, 1..=128)
+            let lights = scene::LIGHTS;
+            let r = ui
+                .add(
+                    Slider::new(
+                        &mut app.controls.lights,
+                        lights.min as usize..=lights.max as usize,
+                    )
                     .logarithmic(true)
                     .text("SRBF lights"),
-            );
+                )
+                .on_hover_text(format!(
+                    "number J of SRBF lights fitted to the map (in the background); {lights}"
+                ));
             if r.drag_stopped() || (r.changed() && !r.dragged()) {
                 refit = Some(true);
             }

@@ -27,20 +27,23 @@ impl Shading for CpuShading {
         format!("CPU, {} threads", rayon::current_num_threads())
     }
 
-    fn prepare(&mut self, scene: &Scene) {
+    fn prepare(&mut self, scene: &Scene) -> Result<(), String> {
         let mut timings = Timings::default();
         self.prepared = Some(self.renderer.prepare(scene, &mut timings));
+        Ok(())
     }
 
-    fn shade(&mut self, scene: &Scene, cancel: &AtomicBool) -> Option<Image> {
-        let prepared = self.prepared.as_ref()?;
+    fn shade(&mut self, scene: &Scene, cancel: &AtomicBool) -> Result<Option<Image>, String> {
+        let Some(prepared) = self.prepared.as_ref() else {
+            return Ok(None);
+        };
         let colours = self
             .renderer
-            .shade_cancellable(scene, prepared, &|_, _| {}, cancel)?;
-        Some(
+            .shade_cancellable(scene, prepared, &|_, _| {}, cancel);
+        Ok(colours.map(|c| {
             self.renderer
-                .resolve(prepared, &colours, scene.groom.point_count()),
-        )
+                .resolve(prepared, &c, scene.groom.point_count())
+        }))
     }
 
     fn strands(&self) -> StrandBuffer {

@@ -1,6 +1,6 @@
 //! What the window needs from a back end that shades: the renderer's stages as three calls, so
-//! that the CPU renderer ([`cpu`]) and the GPU back end (crate `cuticle-gpu`, when it lands)
-//! plug in alike.
+//! that the CPU renderer ([`cpu`]) and the GPU back end ([`gpu`], crate `cuticle-gpu`) plug in
+//! alike; [`Backends::choose`] picks one for `--device auto|gpu|cpu`.
 //!
 //! - [`Shading::prepare`]: visibility, background and shadows for the scene's camera, groom and
 //!   lights (a camera move, a new groom or new lights re-run it);
@@ -11,8 +11,9 @@
 //!   strands under the brush.
 
 pub mod cpu;
+pub mod gpu;
 
-use cuticle_render::{Image, Scene};
+use cuticle_render::{Image, Renderer, Scene};
 use std::sync::atomic::AtomicBool;
 
 /// No strand covers the subsample.
@@ -42,11 +43,52 @@ impl StrandBuffer {
 pub trait Shading: Send {
     /// Which back end this is, as the window shows it.
     fn backend(&self) -> String;
-    /// Stages 2–3 of the frame for `scene`: what stays valid while only the hair changes.
-    fn prepare(&mut self, scene: &Scene);
+    /// Stages 2–3 of the frame for `scene`: what stays valid while only the hair changes; an
+    /// error (one line) when the back end cannot render the scene.
+    fn prepare(&mut self, scene: &Scene) -> Result<(), String>;
     /// Stages 4–5 on the last preparation; `None` when `cancel` was set before it finished (or
     /// nothing is prepared).
-    fn shade(&mut self, scene: &Scene, cancel: &AtomicBool) -> Option<Image>;
+    fn shade(&mut self, scene: &Scene, cancel: &AtomicBool) -> Result<Option<Image>, String>;
     /// The strand at each subsample of the last preparation.
     fn strands(&self) -> StrandBuffer;
+    /// Strand records the last shade re-uploaded for paint (a back end that keeps them on a
+    /// device; 0 for one that reads the scene directly).
+    fn strands_updated(&self) -> usize {
+        0
+    }
+}
+
+/// The two back ends the worker drives, one per quality, and whether they shade on the GPU.
+pub struct Backends {
+    pub preview: Box<dyn Shading>,
+    pub full: Box<dyn Shading>,
+    pub gpu: bool,
+}
+
+impl Backends {
+    /// The CPU renderer at both qualities (a clone of `renderer` shares its tables).
+    pub fn cpu(renderer: &Renderer) -> Self {
+        Self {
+            preview: Box::new(cpu::CpuShading::new(renderer.clone())),
+            full: Box::new(cpu::CpuShading::new(renderer.clone())),
+            gpu: false,
+        }
+    }
+
+    /// The back ends for `--device`: `auto` takes a hardware GPU where one exists, else the
+    /// CPU renderer; `gpu` any adapter, a software one included (an error when there is none);
+    /// `cpu` the CPU renderer.
+    pub fn choose(device: cuticle_gpu::Choice, renderer: &Renderer) -> Result<Self, String> {
+        match cuticle_gpu::Backend::choose(device).map_err(|e| e.to_string())? {
+            cuticle_gpu::Backend::Cpu => Ok(Self::cpu(renderer)),
+            cuticle_gpu::Backend::Gpu(device) => {
+                let gpu = std::sync::Arc::new(cuticle_gpu::GpuRenderer::new(&device, renderer));
+                Ok(Self {
+                    preview: Box::new(gpu::GpuShading::new(gpu.clone())),
+                    full: Box::new(gpu::GpuShading::new(gpu)),
+                    gpu: true,
+                })
+            }
+        }
+    }
 }
