@@ -153,7 +153,7 @@ impl PathArgs {
 
 /// Loads the scene without an SRBF fit (the path tracer samples the map itself).
 fn load(spec: SceneSpec) -> Result<Scene> {
-    Ok(Scene::load(spec, Some(Vec::new()))?)
+    Ok(Scene::load_unfitted(spec)?)
 }
 
 /// `cuticle render --method path`.

@@ -268,18 +268,10 @@ impl Scene {
     /// and fits the lights, unless `lights` are given (read by the caller from a `lights.json`
     /// of `cuticle env fit`).
     pub fn load(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
-        spec.validate()?;
         if let Some(lights) = &lights {
             cuticle_light::validate_lights(lights)?;
         }
-        let mut groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
-        if let Some(path) = &spec.strand_absorption {
-            groom = groom
-                .with_strand_absorption(path)
-                .map_err(|e| SceneError::Groom(format!("strand absorption {path}: {e}")))?;
-        }
-        validate_strands(&spec, &groom)?;
-        let env = load_env(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
+        let (spec, groom, env) = Self::load_parts(spec)?;
         let start = Instant::now();
         let (lights, fit_error) = match lights {
             Some(lights) => (lights, None),
@@ -302,6 +294,27 @@ impl Scene {
             start.elapsed().as_secs_f64(),
             fit_error,
         ))
+    }
+
+    /// Loads the groom and environment with no SRBF lights at all, for a renderer that samples
+    /// the map itself (the path tracer): [`Scene::load`] refuses an empty list of lights.
+    pub fn load_unfitted(spec: SceneSpec) -> Result<Self, SceneError> {
+        let (spec, groom, env) = Self::load_parts(spec)?;
+        Ok(Self::assemble(spec, groom, env, Vec::new(), 0.0, None))
+    }
+
+    /// The checked spec, its groom (long segments split) and its rotated environment.
+    fn load_parts(spec: SceneSpec) -> Result<(SceneSpec, Groom, EnvMap), SceneError> {
+        spec.validate()?;
+        let mut groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
+        if let Some(path) = &spec.strand_absorption {
+            groom = groom
+                .with_strand_absorption(path)
+                .map_err(|e| SceneError::Groom(format!("strand absorption {path}: {e}")))?;
+        }
+        validate_strands(&spec, &groom)?;
+        let env = load_env(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
+        Ok((spec, groom, env))
     }
 
     /// A scene from parts already in memory (tests, benchmarks).
