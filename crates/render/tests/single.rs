@@ -151,3 +151,42 @@ fn wide_light_matches_the_exact_model_per_mode() {
     let s = sweep(0.3);
     check(&s, [0.20, 0.08, 0.05], (0.85, 1.05), "λ = 0.3");
 }
+
+/// A narrow light (λ = 0.01, a sun of the fitted default sky) beside a fiber seen from the
+/// front (θ_o = 0, θ_i = 0.3, φ = 1–1.5, inside the deflection limit of TT at φ ≈ 1.40 where
+/// the model's N_TT ends): the modes' sum within 0.75–1.3 of the exact model's. Xu et al.
+/// 2011 eq. 16's single TT Gaussian gave 2.4× at φ = 1 and 5.8× at φ = 1.5 (its tail past the
+/// limit), which made the default scene's SRBF direct light 1.7× brute's in red.
+#[test]
+fn a_light_beside_the_fiber_sees_no_tt_past_its_limit() {
+    let r = Renderer::new();
+    let fiber = HairParams::default().fiber(None);
+    let lobes = r.lobe_table(&fiber);
+    let lobes = lobes.for_fiber(&r.tables, &fiber);
+    let shading = ShadingFiber {
+        params: &fiber,
+        lobes: &lobes,
+    };
+    let model = Marschner2003::new(fiber).unwrap();
+    let lambda = 0.01;
+    let unit = 1.0 / cuticle_render::srbf::dual_scattering::srbf_integral(lambda);
+    for phi in [1.0, 1.25, 1.5] {
+        let light = LocalLight {
+            theta: 0.3,
+            phi: 0.0,
+            bandwidth: lambda,
+            radiance: DVec3::ONE,
+        };
+        let ao = FiberAngles::new(0.0, phi);
+        let srbf: DVec3 = modes(&r.tables, shading, ao.theta, phi, &light, 4)
+            .iter()
+            .map(|m| *m * unit)
+            .sum();
+        let want: DVec3 = exact(&model, 0.3, lambda, ao).iter().sum();
+        let ratio = srbf / want;
+        assert!(
+            ratio.min_element() >= 0.75 && ratio.max_element() <= 1.3,
+            "φ {phi}: srbf / exact {ratio}"
+        );
+    }
+}
