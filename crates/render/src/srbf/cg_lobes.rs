@@ -162,7 +162,7 @@ pub fn tt_lobe(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> Lobe {
 /// Why not eq. 16's single Gaussian of that value and energy: N_TT is flat-topped and ends at
 /// the deflection's limit |φ − π| = π − 2 asin(1/η′) ≈ 1.74, where the Gaussian still holds a
 /// fifth of its energy; a directional light beside the fiber (φ ≈ 1–1.5) then saw several times
-/// the model's TT, the default scene's too bright direct light. Where the model's N_TT is
+/// the model's TT. Where the model's N_TT is
 /// peakier than a Gaussian of its C₁ the pair closes to δ = 0 (value not matched).
 pub fn tt_fit(g: &Geometry, sigma_a: f64) -> Lobe {
     let sp = g.sigma_prime(sigma_a);
@@ -208,10 +208,16 @@ struct TtPair {
 fn tt_pair(peak: f64, energy: f64, c1: f64) -> TtPair {
     let (lo, hi) = (1e-3f64, 1e6f64);
     if !(peak > 0.0 && energy > 0.0) || c1 <= bessel_ratio(lo) {
-        return TtPair { kappa: lo, offset: 0.0 };
+        return TtPair {
+            kappa: lo,
+            offset: 0.0,
+        };
     }
     if c1 >= bessel_ratio(hi) {
-        return TtPair { kappa: hi, offset: 0.0 };
+        return TtPair {
+            kappa: hi,
+            offset: 0.0,
+        };
     }
     let bisect = |f: &dyn Fn(f64) -> bool, mut a: f64, mut b: f64| {
         for _ in 0..60 {
@@ -226,7 +232,10 @@ fn tt_pair(peak: f64, energy: f64, c1: f64) -> TtPair {
         energy * (k * (c - 1.0)).exp() / (2.0 * PI * i0_scaled(k))
     };
     if at_pi(k_min) <= peak {
-        return TtPair { kappa: k_min, offset: 0.0 };
+        return TtPair {
+            kappa: k_min,
+            offset: 0.0,
+        };
     }
     let kappa = bisect(&|k| at_pi(k) > peak, k_min.ln(), hi.ln());
     TtPair {
@@ -241,7 +250,8 @@ fn i0_scaled(x: f64) -> f64 {
         let t = (x / 3.75).powi(2);
         (1.0 + t
             * (3.5156229
-                + t * (3.0899424 + t * (1.2067492 + t * (0.2659732 + t * (0.0360768 + t * 0.0045813))))))
+                + t * (3.0899424
+                    + t * (1.2067492 + t * (0.2659732 + t * (0.0360768 + t * 0.0045813))))))
             * (-x).exp()
     } else {
         let t = 3.75 / x;
@@ -536,12 +546,25 @@ mod tests {
                 let l1 = integral(|phi| (pair(phi) - exact(phi)).abs()) / e;
                 let limit = PI - 2.0 * (1.0 / eta_prime(1.55, td)).asin();
                 let beyond = integral(|phi| {
-                    if wrap_pi(phi - PI).abs() > limit { pair(phi) } else { 0.0 }
+                    if wrap_pi(phi - PI).abs() > limit {
+                        pair(phi)
+                    } else {
+                        0.0
+                    }
                 }) / e;
-                assert!(at_pi.abs() < 0.05, "θ_d {td} σ {sigma}: value at π off by {at_pi}");
-                assert!(energy.abs() < 0.03, "θ_d {td} σ {sigma}: energy off by {energy}");
+                assert!(
+                    at_pi.abs() < 0.05,
+                    "θ_d {td} σ {sigma}: value at π off by {at_pi}"
+                );
+                assert!(
+                    energy.abs() < 0.03,
+                    "θ_d {td} σ {sigma}: energy off by {energy}"
+                );
                 assert!(l1 < 0.12, "θ_d {td} σ {sigma}: L1 {l1} of the energy");
-                assert!(beyond < 0.06, "θ_d {td} σ {sigma}: {beyond} of the energy beyond the limit");
+                assert!(
+                    beyond < 0.06,
+                    "θ_d {td} σ {sigma}: {beyond} of the energy beyond the limit"
+                );
             }
         }
     }

@@ -183,10 +183,8 @@ impl Dual<'_> {
                             DVec3::from_array(std::array::from_fn(|c| {
                                 tt.weight[c]
                                     * (self.unit_half(tt.bandwidth[c], delta - PI - tt.offset[c])
-                                        + self.unit_half(
-                                            tt.bandwidth[c],
-                                            delta - PI + tt.offset[c],
-                                        ))
+                                        + self
+                                            .unit_half(tt.bandwidth[c], delta - PI + tt.offset[c]))
                             }))
                         }
                         _ => {

@@ -128,10 +128,7 @@ fn tt_convolved(tt: &TtLobes, k1: f64, azimuth: &LightAzimuth) -> DVec3 {
         }
         let k2 = sharpness(tt.bandwidth[c]);
         let (sin_off, cos_off) = tt.offset[c].sin_cos();
-        let (a, b) = (
-            azimuth.cos_delta * cos_off,
-            azimuth.sin_delta * sin_off,
-        );
+        let (a, b) = (azimuth.cos_delta * cos_off, azimuth.sin_delta * sin_off);
         tt.weight[c] * (convolve_sharp(k1, k2, -(a + b)) + convolve_sharp(k1, k2, -(a - b)))
     }))
 }
