@@ -50,6 +50,7 @@ enum Command {
 }
 
 fn main() {
+    quiet_vulkan_device_select();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Lobes(args) => commands::lobes::run(args),
@@ -92,4 +93,17 @@ fn one_line(err: &anyhow::Error) -> String {
         line.push_str(&text);
     }
     line
+}
+
+/// Mesa's implicit Vulkan layer `VK_LAYER_MESA_device_select` connects to a display server to
+/// order the adapters and, on a headless machine (no XDG_RUNTIME_DIR), prints "error:
+/// XDG_RUNTIME_DIR is invalid" whenever a GPU is probed. The device is chosen by its type here,
+/// not by that layer, so it is switched off unless the user asked for it.
+fn quiet_vulkan_device_select() {
+    if std::env::var_os("XDG_RUNTIME_DIR").is_none()
+        && std::env::var_os("NODEVICE_SELECT").is_none()
+    {
+        // SAFETY: called first thing in main, before any thread exists.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
 }

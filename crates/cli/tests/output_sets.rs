@@ -13,7 +13,7 @@ use std::time::Duration;
 fn render_set_width(dir: &Path) -> u64 {
     assert_eq!(
         names(dir),
-        ["image.exr", "image.png", "render.json"],
+        ["coverage.exr", "image.exr", "image.png", "render.json"],
         "{}",
         dir.display()
     );
@@ -22,11 +22,13 @@ fn render_set_width(dir: &Path) -> u64 {
     let width = record["params"]["width"].as_u64().unwrap();
     let png = image::open(dir.join("image.png")).unwrap();
     assert_eq!(png.width() as u64, width, "image.png of another run");
-    let exr = exr::meta::MetaData::read_from_file(dir.join("image.exr"), false).unwrap();
-    assert_eq!(
-        exr.headers[0].layer_size.0 as u64, width,
-        "image.exr of another run"
-    );
+    for name in ["image.exr", "coverage.exr"] {
+        let exr = exr::meta::MetaData::read_from_file(dir.join(name), false).unwrap();
+        assert_eq!(
+            exr.headers[0].layer_size.0 as u64, width,
+            "{name} of another run"
+        );
+    }
     width
 }
 

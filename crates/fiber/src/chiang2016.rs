@@ -44,7 +44,8 @@
 //! with σ_a = 0 they are exactly 1. The far-field [`FiberModel::sample`] first draws h uniformly.
 
 use crate::attenuation::attenuation;
-use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::bravais::{eta_perp, gamma_t};
+use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
 use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
@@ -71,16 +72,21 @@ pub struct Chiang2016 {
     widths: [LongitudinalWidth; LOBES],
     /// Offset of each lobe's cone from −θ_i.
     cone_shift: [f64; LOBES],
+    /// Sine and cosine of each cone shift, for the cone by the angle-sum identities.
+    shift_sin_cos: [(f64, f64); LOBES],
     /// The logistic scale s.
     s: f64,
+    /// The trimmed logistic's normaliser: the logistic's mass on [−π, π].
+    trim: f64,
 }
 
 /// The values the lobes share at one offset h: attenuation and deflection geometry.
 struct Offset {
     /// A_p for R, TT, TRT and the remainder.
     a: [DVec3; LOBES],
-    h: f64,
-    eta_prime: f64,
+    /// γ_i = asin h and γ_t = asin(h / η′), shared by every lobe's Φ(p, h).
+    gamma_i: f64,
+    gamma_t: f64,
 }
 
 impl Chiang2016 {
@@ -91,12 +97,16 @@ impl Chiang2016 {
         let v_r = longitudinal_variance(params.beta);
         let v = [v_r, 0.25 * v_r, 4.0 * v_r, 4.0 * v_r];
         let a = params.alpha;
+        let cone_shift = [2.0 * a, -a, -4.0 * a, 0.0];
+        let s = logistic_scale(beta_n);
         Ok(Self {
             params,
             beta_n,
             widths: v.map(LongitudinalWidth::new),
-            cone_shift: [2.0 * a, -a, -4.0 * a, 0.0],
-            s: logistic_scale(beta_n),
+            cone_shift,
+            shift_sin_cos: cone_shift.map(f64::sin_cos),
+            s,
+            trim: logistic_cdf(PI, s) - logistic_cdf(-PI, s),
         })
     }
 
@@ -125,20 +135,23 @@ impl Chiang2016 {
 
     /// M_p(θ_o) for every lobe.
     fn m_all(&self, theta_i: f64, theta_o: f64) -> [f64; LOBES] {
+        let (si, ci) = theta_i.sin_cos();
         let (so, co) = theta_o.sin_cos();
+        // The cone −θ_i + shift, by the angle-sum identities.
         std::array::from_fn(|p| {
-            let (sc, cc) = (-theta_i + self.cone_shift[p]).sin_cos();
-            self.widths[p].eval(sc, cc, so, co)
+            let (ss, cs) = self.shift_sin_cos[p];
+            self.widths[p].eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
         })
     }
 
     fn offset(&self, theta_i: f64, h: f64) -> Offset {
         let h = h.clamp(-1.0, 1.0);
         let att = attenuation(theta_i, h, self.params.eta, self.params.mu_a);
+        let eta_prime = eta_perp(self.params.eta, theta_i);
         Offset {
             a: [att.0[0], att.0[1], att.0[2], att.0[3] + att.0[4]],
-            h,
-            eta_prime: eta_perp(self.params.eta, theta_i),
+            gamma_i: h.asin(),
+            gamma_t: gamma_t(h, eta_prime),
         }
     }
 
@@ -146,10 +159,7 @@ impl Chiang2016 {
     fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
         std::array::from_fn(|p| match p {
             3 => 0.5 / PI,
-            _ => trimmed_logistic(
-                wrap_pi(phi - azimuthal_deflection(p as u32, at.h, at.eta_prime)),
-                self.s,
-            ),
+            _ => logistic(wrap_pi(phi - at.deflection(p)), self.s) / self.trim,
         })
     }
 
@@ -164,8 +174,7 @@ impl Chiang2016 {
     fn near_pdf(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> f64 {
         let m = self.m_all(wi.theta, wo.theta);
         let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
-        let probs = selection(&at.a);
-        (0..LOBES).map(|p| probs[p] * m[p] * n[p]).sum()
+        near_density(&m, &n, &at.a)
     }
 
     /// Calls `f(h, weight)` at the nodes of the rule whose weighted sum of f is ½ ∫ f dh over
@@ -197,30 +206,57 @@ impl Chiang2016 {
         let theta_o = self.longitudinal(p, wi.theta).sample(u[1], u[2]);
         let phi = match p {
             3 => 2.0 * PI * u_phi - PI,
-            _ => {
-                azimuthal_deflection(p as u32, at.h, at.eta_prime)
-                    + sample_trimmed_logistic(u_phi, self.s)
-            }
+            _ => at.deflection(p) + sample_trimmed_logistic(u_phi, self.s),
         };
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
-        let pdf = self.near_pdf(wi, wo, at);
-        if !(pdf > 0.0 && pdf.is_finite()) {
-            return None;
-        }
-        let weight = self.near(wi, wo, at).total() / pdf;
+        // M and N once for both the density and S (near_pdf's and near's arithmetic).
+        let m = self.m_all(wi.theta, wo.theta);
+        let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
+        let pdf = near_density(&m, &n, &at.a);
         let lobe = if p == 3 {
             Lobe::Rest
         } else {
             Lobe::from_index(p)
         };
-        weight.is_finite().then_some(FiberSample {
-            wo,
-            weight,
-            pdf,
-            lobe,
-            iterations: 1,
-        })
+        weighted_sample(wo, near_lobes(&m, &n, &at.a).total(), pdf, lobe, 1)
     }
+}
+
+impl Chiang2016 {
+    /// The far-field S (all lobes) and pdf from one pass over the offsets: the arithmetic of
+    /// [`FiberModel::eval`] and [`FiberModel::pdf`], so the same results.
+    fn far_eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (DVec3, f64) {
+        let m = self.m_all(wi.theta, wo.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let mut sum = [DVec3::ZERO; LOBES];
+        let mut density = [0.0; LOBES];
+        self.for_offsets(|h, w| {
+            let at = self.offset(wi.theta, h);
+            let n = self.n_all(&at, phi);
+            let probs = selection(&at.a);
+            for p in 0..LOBES {
+                sum[p] += at.a[p] * (n[p] * w);
+                density[p] += probs[p] * n[p] * w;
+            }
+        });
+        let s = near_lobes(&m, &[1.0; LOBES], &sum).total();
+        (s, (0..LOBES).map(|p| density[p] * m[p]).sum())
+    }
+}
+
+impl Offset {
+    /// Φ(p, h) = 2pγ_t − 2γ_i + pπ (d'Eon et al. 2014 eq. 3), as
+    /// [`crate::bravais::azimuthal_deflection`] computes it, from the shared γ_i and γ_t.
+    fn deflection(&self, p: usize) -> f64 {
+        let p = p as f64;
+        2.0 * p * self.gamma_t - 2.0 * self.gamma_i + p * PI
+    }
+}
+
+/// Σ_p (A_p / Σ A) M_p N_p, the near-field sampling density.
+fn near_density(m: &[f64; LOBES], n: &[f64; LOBES], a: &[DVec3; LOBES]) -> f64 {
+    let probs = selection(a);
+    (0..LOBES).map(|p| probs[p] * m[p] * n[p]).sum()
 }
 
 /// v_R of Chiang et al. 2016 eq. 7.
@@ -292,11 +328,13 @@ impl FiberModel for Chiang2016 {
         near_lobes(&m, &[1.0; LOBES], &sum)
     }
 
-    /// h uniform in [−1, 1] from `u[0]`, then the near-field sample; weight and pdf far-field.
+    /// h uniform in [−1, 1] from `u[0]`, then the near-field sample; weight and pdf far-field
+    /// (one pass over the offsets for both).
     fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
         let at = self.offset(wi.theta, 2.0 * u[0] - 1.0);
         let near = self.sample_near(wi, &at, [u[1], u[2], u[3]])?;
-        crate::deon2011::finish_sample(self, wi, near.wo, near.lobe, 1)
+        let (s, pdf) = self.far_eval_and_pdf(wi, near.wo);
+        weighted_sample(near.wo, s, pdf, near.lobe, 1)
     }
 
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
@@ -366,6 +404,16 @@ mod tests {
             mu_a,
         };
         Chiang2016::new(params, beta_n).unwrap()
+    }
+
+    #[test]
+    fn samples_carry_exactly_the_eval_and_pdf_they_report() {
+        // sample finds S and pdf in one pass (far field) or from one M and N (near field):
+        // the same arithmetic as eval and pdf, so the same bits.
+        let m = model(0.3, 0.3, 2.0, DVec3::new(0.54, 0.91, 1.78));
+        let wi = FiberAngles::new(0.4, 0.1);
+        check_weights(&m, wi, 300, 41, 0.0).unwrap();
+        check_weights(&AtOffset { model: &m, h: 0.3 }, wi, 5_000, 42, 0.0).unwrap();
     }
 
     fn rule(m: &Chiang2016) -> FurnaceRule {

@@ -117,14 +117,36 @@ impl DEon2011 {
     fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let n = self.azimuthal_all(wi.theta, theta_d, wrap_pi(wo.phi - wi.phi), weighting);
+        LobeValues::separable(self.m_all(wi, wo), n)
+    }
+
+    /// S and the sampling density together: M_p and the table coordinates found once, the
+    /// table's (RGB, selection) texels read once. The same arithmetic as [`FiberModel::eval`]
+    /// and [`FiberModel::pdf`], so the results are identical to theirs.
+    fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (DVec3, f64) {
+        let theta_d = 0.5 * (wo.theta - wi.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let (s, sel) = match &self.table {
+            Some(t) => t.eval_all_both(wi.theta, theta_d, phi),
+            None => (
+                self.azimuthal_all(wi.theta, theta_d, phi, Weighting::Attenuation),
+                self.azimuthal_all(wi.theta, theta_d, phi, Weighting::Selection),
+            ),
+        };
+        let m = self.m_all(wi, wo);
+        let pdf = LobeValues::separable(m, sel).total().x;
+        (LobeValues::separable(m, s).total(), pdf)
+    }
+
+    /// M_p(θ_o) of R, TT, TRT and TRRT (the remainder shares TRRT's).
+    fn m_all(&self, wi: FiberAngles, wo: FiberAngles) -> [f64; 4] {
         let (si, ci) = wi.theta.sin_cos();
         let (so, co) = wo.theta.sin_cos();
         // The cone −θ_i + shift, by the angle-sum identities.
-        let m: [f64; 4] = std::array::from_fn(|p| {
+        std::array::from_fn(|p| {
             let (width, ss, cs) = self.prepared[p];
             width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
-        });
-        LobeValues::separable(m, n)
+        })
     }
 
     /// The longitudinal lobe of mode p for light at θ_i.
@@ -150,7 +172,8 @@ impl FiberModel for DEon2011 {
         let theta_d = 0.5 * (theta_o - wi.theta);
         let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
-        finish_sample(self, wi, wo, Lobe::from_index(p), 1)
+        let (s, pdf) = self.eval_and_pdf(wi, wo);
+        weighted_sample(wo, s, pdf, Lobe::from_index(p), 1)
     }
 
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
@@ -183,7 +206,22 @@ pub(crate) fn finish_sample(
     if !(pdf > 0.0 && pdf.is_finite()) {
         return None;
     }
-    let weight = model.eval(wi, wo).total() / pdf;
+    weighted_sample(wo, model.eval(wi, wo).total(), pdf, lobe, iterations)
+}
+
+/// A sample of S (all lobes, RGB) drawn with density `pdf`: weight S / pdf; `None` where the
+/// density vanishes or the weight is not finite. For models that find S and pdf together.
+pub(crate) fn weighted_sample(
+    wo: FiberAngles,
+    s: DVec3,
+    pdf: f64,
+    lobe: Lobe,
+    iterations: u32,
+) -> Option<FiberSample> {
+    if !(pdf > 0.0 && pdf.is_finite()) {
+        return None;
+    }
+    let weight = s / pdf;
     weight.is_finite().then_some(FiberSample {
         wo,
         weight,
@@ -228,6 +266,21 @@ mod tests {
             assert!(p.is_ok(), "case {n}: {p:?}");
             check_weights(&m, wi, 5_000, 7 + n as u64, 1e-4).unwrap();
         }
+    }
+
+    #[test]
+    fn samples_carry_exactly_the_eval_and_pdf_they_report() {
+        // sample reads S and pdf from one pass over the table (or the quadrature): the same
+        // arithmetic as eval and pdf, so the same bits.
+        let case = (0.0, 0.3, 2.0, DVec3::new(0.54, 0.91, 1.78));
+        let wi = FiberAngles::new(-0.7, 0.2);
+        check_weights(&model(case), wi, 5_000, 3, 0.0).unwrap();
+        let direct = DEon2011::new(FiberParams {
+            beta: 0.3,
+            ..FiberParams::default()
+        })
+        .unwrap();
+        check_weights(&direct, wi, 200, 4, 0.0).unwrap();
     }
 
     #[test]

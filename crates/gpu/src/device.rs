@@ -77,8 +77,12 @@ impl GpuDevice {
     /// The best adapter `preference` allows, with a device of its limits and, where it has
     /// them, timestamp queries.
     pub fn new(preference: Preference) -> Result<Self, DeviceError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
-        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::all()));
+        // Vulkan, Metal and DX12 only: probing GL through EGL connects to a display server and
+        // prints the driver's complaints (e.g. about XDG_RUNTIME_DIR) on a headless machine.
+        let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle();
+        descriptor.backends = wgpu::Backends::PRIMARY;
+        let instance = wgpu::Instance::new(descriptor);
+        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::PRIMARY));
         let usable = |a: &wgpu::Adapter| {
             let info = a.get_info();
             let hardware = info.device_type != wgpu::DeviceType::Cpu;

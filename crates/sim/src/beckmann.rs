@@ -1,8 +1,8 @@
 //! The Beckmann microfacet distribution and its Smith shadowing-masking term (Walter et al. 2007,
 //! "Microfacet models for refraction through rough surfaces", §5.1), with roughness β.
 
-use crate::erf::erfc;
 use crate::ln::ln;
+use cuticle_fiber::special::erfc_rel_1_2e7;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 
@@ -40,7 +40,7 @@ fn smith_lambda(a: f64) -> f64 {
     if a > 6.0 {
         return 0.0;
     }
-    0.5 * ((-a * a).exp() / (a * PI.sqrt()) - erfc(a))
+    0.5 * ((-a * a).exp() / (a * PI.sqrt()) - erfc_rel_1_2e7(a))
 }
 
 /// Smith G1(v, m) for Beckmann (Walter 2007 eq. 27), given cos θ_v = v·n and v·m. Zero when v

@@ -30,7 +30,6 @@ pub mod beckmann;
 mod bin;
 pub mod cylinder;
 pub mod dielectric;
-mod erf;
 pub mod grid;
 mod interface;
 mod ln;

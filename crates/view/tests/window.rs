@@ -380,7 +380,7 @@ fn bad_input_shows_an_error_and_keeps_the_scene() {
     std::fs::write(&garbage, b"HAIR this is not a hair file at all").unwrap();
     type Act<'a> = &'a dyn Fn(&mut Harness<'static, Option<ViewApp>>);
     let cases: [(&str, &str, Act); 5] = [
-        ("NaN σ_a", "mu_a = NaN", &|h| {
+        ("NaN σ_a", "mu_a must be a finite number", &|h| {
             app_mut(h).controls.sigma_text = "NaN".into();
             h.get_by_label_contains("r, g, b").focus();
             h.step();

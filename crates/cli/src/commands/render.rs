@@ -94,12 +94,14 @@ pub struct SceneArgs {
 
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
-    let backend = device::choose(args.device, spec.method)?;
     if spec.method == Method::Path {
+        device::choose(args.device, spec.method)?;
         return crate::commands::trace::run(&args.path, spec, &args.out);
     }
     let scene = load_within_memory(spec, lights)?;
     Renderer::accepts(&scene)?;
+    // The device is probed only once the scene is known to be good: bad input fails fast.
+    let backend = device::choose(args.device, scene.spec.method)?;
     let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
     eprintln!(
@@ -222,8 +224,8 @@ pub fn bench(command: Bench) -> Result<()> {
     args.width.into_iter().for_each(|v| spec.width = v);
     args.height.into_iter().for_each(|v| spec.height = v);
     FRAMES.check_usize(args.frames)?;
-    let backend = device::choose(args.device, spec.method)?;
     let scene = load_within_memory(spec, None)?;
+    let backend = device::choose(args.device, scene.spec.method)?;
     let out = OutDir::create(&args.out, "bench")?;
     let renderer = Renderer::new();
     eprintln!(

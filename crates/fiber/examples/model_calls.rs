@@ -1,0 +1,117 @@
+//! A fixed number of eval, sample and pdf calls of one model on the inputs of
+//! `benches/models.rs` (pbrt-v4's: directions uniform on the sphere, β = 0.3, α = 2°,
+//! eumelanin 1.3, h = 0.3 for Chiang 2016's near field), each in its own function, for
+//! instruction counts that a loaded machine does not disturb:
+//! `valgrind --tool=callgrind --toggle-collect='model_calls::run_*' target/release/examples/model_calls deon2011`
+//! then `callgrind_annotate --inclusive=yes` gives each `run_*`'s instructions for CALLS calls.
+use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::{
+    Chiang2016, DEon2011, FiberAngles, FiberModel, FiberParams, Marschner2003, NonSeparable,
+};
+use std::hint::black_box;
+
+const CALLS: usize = 4096;
+
+type Case = (FiberAngles, FiberAngles, [f64; 4]);
+
+fn cases() -> Vec<Case> {
+    let mut state = 0x2545_F491_4F6C_DD1Du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let direction = |next: &mut dyn FnMut() -> f64| {
+        let theta = (2.0 * next() - 1.0).asin();
+        FiberAngles::new(theta, (next() - 0.5) * std::f64::consts::TAU)
+    };
+    (0..CALLS)
+        .map(|_| {
+            let (wi, wo) = (direction(&mut next), direction(&mut next));
+            (wi, wo, [next(), next(), next(), next()])
+        })
+        .collect()
+}
+
+#[inline(never)]
+fn run_eval(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
+    cases
+        .iter()
+        .map(|&(wi, wo, _)| match h {
+            Some(h) => m.eval_at(black_box(wi), black_box(wo), h).total().x,
+            None => m.eval(black_box(wi), black_box(wo)).total().x,
+        })
+        .sum()
+}
+
+#[inline(never)]
+fn run_sample(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
+    cases
+        .iter()
+        .map(|&(wi, _, u)| {
+            let s = match h {
+                Some(h) => m.sample_at(black_box(wi), h, black_box(u)),
+                None => m.sample(black_box(wi), black_box(u)),
+            };
+            s.map_or(0.0, |s| s.weight.x)
+        })
+        .sum()
+}
+
+#[inline(never)]
+fn run_pdf(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
+    cases
+        .iter()
+        .map(|&(wi, wo, _)| match h {
+            Some(h) => m.pdf_at(black_box(wi), black_box(wo), h),
+            None => m.pdf(black_box(wi), black_box(wo)),
+        })
+        .sum()
+}
+
+#[inline(never)]
+fn warm_up(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
+    cases
+        .iter()
+        .map(|&(wi, wo, u)| {
+            let s = match h {
+                Some(h) => m.sample_at(wi, h, u),
+                None => m.sample(wi, u),
+            };
+            s.map_or(0.0, |s| s.weight.x) + m.pdf(wi, wo) + m.eval(wi, wo).total().x
+        })
+        .sum()
+}
+
+fn main() {
+    let p = FiberParams {
+        eta: 1.55,
+        beta: 0.3,
+        alpha: 2f64.to_radians(),
+        mu_a: mu_a_from_melanin(1.3, 0.0),
+    };
+    let which = std::env::args().nth(1).unwrap_or_else(|| "deon2011".into());
+    let (model, h): (Box<dyn FiberModel>, Option<f64>) = match which.as_str() {
+        "deon2011" => (Box::new(DEon2011::new(p).unwrap().tabulated()), None),
+        "chiang2016" => (Box::new(Chiang2016::new(p, p.beta).unwrap()), Some(0.3)),
+        "nonseparable" => (Box::new(NonSeparable::new(p).unwrap().tabulated()), None),
+        "marschner2003" => (Box::new(Marschner2003::from_fiber(&p).unwrap()), None),
+        other => {
+            eprintln!("unknown model {other}: deon2011, chiang2016, nonseparable, marschner2003");
+            std::process::exit(2);
+        }
+    };
+    let cases = cases();
+    // Outside the counted functions, so lazy state (quadrature rules, the lobe-energy table)
+    // is built before counting.
+    let warm = warm_up(model.as_ref(), h, &cases[..8]);
+    let total = run_eval(model.as_ref(), h, &cases)
+        + run_sample(model.as_ref(), h, &cases)
+        + run_pdf(model.as_ref(), h, &cases);
+    println!(
+        "{which}: {} calls each, checksum {}",
+        CALLS,
+        total + 0.0 * warm
+    );
+}
