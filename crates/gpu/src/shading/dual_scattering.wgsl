@@ -101,11 +101,13 @@ fn global_term(theta_o: f32, theta_j: f32, sigma_f: f32, delta: f32) -> vec3<f32
     return sum;
 }
 
-// The TT integrand of Dual::global: each channel's Gaussian at π over the half circle.
+// The TT integrand of Dual::global: each channel's pair of Gaussians at π ± δ over the half
+// circle.
 fn global_tt(tt: TtLobes, delta: f32) -> vec3<f32> {
     var out = vec3<f32>(0.0);
     for (var c = 0u; c < 3u; c++) {
-        out[c] = tt.weight[c] * unit_half(tt.bandwidth[c], delta - PI);
+        out[c] = tt.weight[c] * (unit_half(tt.bandwidth[c], delta - PI - tt.offset[c])
+            + unit_half(tt.bandwidth[c], delta - PI + tt.offset[c]));
     }
     return out;
 }

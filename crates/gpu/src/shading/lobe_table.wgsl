@@ -21,10 +21,11 @@ fn fiber_point(mu: vec3<f32>) -> FiberPoint {
     return FiberPoint(mu, array<Cell, 3>(cell_y(g, x.x), cell_y(g, x.y), cell_y(g, x.z)), x);
 }
 
-// N_TT of the three channels: weight and bandwidth of one Gaussian at π each.
+// N_TT of the three channels: weight and bandwidth of a pair of Gaussians at π ± offset each.
 struct TtLobes {
     weight: vec3<f32>,
     bandwidth: vec3<f32>,
+    offset: vec3<f32>,
 }
 
 fn tt_lobes(theta_d: f32) -> TtLobes {
@@ -33,6 +34,7 @@ fn tt_lobes(theta_d: f32) -> TtLobes {
     for (var c = 0u; c < 3u; c++) {
         out.weight[c] = lobe_at(GRID_LOBE_TT, cx, fiber.lobe_x[c], 0u);
         out.bandwidth[c] = lobe_at(GRID_LOBE_TT, cx, fiber.lobe_x[c], 1u);
+        out.offset[c] = lobe_at(GRID_LOBE_TT, cx, fiber.lobe_x[c], 2u);
     }
     return out;
 }

@@ -94,13 +94,16 @@ fn modes(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32) -> 
     return sum;
 }
 
-// 𝒩_TT (eq. 12 with 16): each channel's Gaussian at π against the light's of sharpness κ₁.
+// 𝒩_TT (eq. 12 with 16): each channel's pair of Gaussians at π ± δ against the light's of
+// sharpness κ₁, cos(Δ − π ∓ δ) = −(cos Δ cos δ ± sin Δ sin δ).
 fn tt_convolved(tt: TtLobes, k1: f32, it: Integrand) -> vec3<f32> {
-    let c = -it.cos_delta;
     var out = vec3<f32>(0.0);
     for (var ch = 0u; ch < 3u; ch++) {
         if (tt.weight[ch] != 0.0) {
-            out[ch] = tt.weight[ch] * convolve_sharp(k1, sharpness(tt.bandwidth[ch]), c);
+            let k2 = sharpness(tt.bandwidth[ch]);
+            let a = it.cos_delta * cos(tt.offset[ch]);
+            let b = it.sin_delta * sin(tt.offset[ch]);
+            out[ch] = tt.weight[ch] * (convolve_sharp(k1, k2, -(a + b)) + convolve_sharp(k1, k2, -(a - b)));
         }
     }
     return out;

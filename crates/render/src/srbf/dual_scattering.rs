@@ -181,7 +181,10 @@ impl Dual<'_> {
                         1 => {
                             let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
-                                tt.weight[c] * self.unit_half(tt.bandwidth[c], delta - PI)
+                                tt.weight[c]
+                                    * (self.unit_half(tt.bandwidth[c], delta - PI - tt.offset[c])
+                                        + self
+                                            .unit_half(tt.bandwidth[c], delta - PI + tt.offset[c]))
                             }))
                         }
                         _ => {

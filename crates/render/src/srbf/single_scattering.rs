@@ -119,14 +119,17 @@ pub fn modes<L: AzimuthalLobes>(
     })
 }
 
-/// 𝒩_TT (eq. 12 with 16): each channel's Gaussian at π against the light's of sharpness κ₁.
+/// 𝒩_TT (eq. 12 with 16): each channel's pair of Gaussians at π ± δ against the light's of
+/// sharpness κ₁, cos(Δ − π ∓ δ) = −(cos Δ cos δ ± sin Δ sin δ).
 fn tt_convolved(tt: &TtLobes, k1: f64, azimuth: &LightAzimuth) -> DVec3 {
-    let cos = -azimuth.cos_delta;
     DVec3::from_array(std::array::from_fn(|c| {
         if tt.weight[c] == 0.0 {
             return 0.0;
         }
-        tt.weight[c] * convolve_sharp(k1, sharpness(tt.bandwidth[c]), cos)
+        let k2 = sharpness(tt.bandwidth[c]);
+        let (sin_off, cos_off) = tt.offset[c].sin_cos();
+        let (a, b) = (azimuth.cos_delta * cos_off, azimuth.sin_delta * sin_off);
+        tt.weight[c] * (convolve_sharp(k1, k2, -(a + b)) + convolve_sharp(k1, k2, -(a - b)))
     }))
 }
 
