@@ -11,8 +11,17 @@ fn view_refuses_a_bad_device_and_the_brute_force_on_the_gpu() {
     );
     common::assert_refused(
         &[
-            "view", "--device", "gpu", "--method", "brute", "--strands", "20", "--width", "32",
-            "--height", "24",
+            "view",
+            "--device",
+            "gpu",
+            "--method",
+            "brute",
+            "--strands",
+            "20",
+            "--width",
+            "32",
+            "--height",
+            "24",
         ],
         "runs on the CPU only",
     );
