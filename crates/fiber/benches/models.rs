@@ -11,13 +11,14 @@
 //! `cargo bench -p cuticle-fiber --bench models -- '^(deon2011_table|chiang2016_h0.3|nonseparable_table|marschner2003)/'`
 //! (the far-field Chiang 2016, direct d'Eon 2011 and the table build come after them).
 
+#[path = "common/inputs.rs"]
+mod inputs;
+
 use criterion::{BatchSize, Criterion};
-use cuticle_fiber::absorption::mu_a_from_melanin;
 use cuticle_fiber::azimuthal::AzimuthalScattering;
 use cuticle_fiber::table::AzimuthalTable;
-use cuticle_fiber::{
-    Chiang2016, DEon2011, FiberAngles, FiberModel, FiberParams, Marschner2003, NonSeparable,
-};
+use cuticle_fiber::{Chiang2016, DEon2011, FiberAngles, FiberModel, Marschner2003, NonSeparable};
+use inputs::{cases, params};
 use std::hint::black_box;
 use std::path::PathBuf;
 
@@ -47,36 +48,6 @@ const ROWS: [(&str, &str, [f64; 3]); 4] = [
     ),
     ("marschner2003", "Marschner 2003", [150.0, 400.0, 150.0]),
 ];
-
-fn params() -> FiberParams {
-    FiberParams {
-        eta: 1.55,
-        beta: 0.3,
-        alpha: 2f64.to_radians(),
-        mu_a: mu_a_from_melanin(1.3, 0.0),
-    }
-}
-
-/// (ω_i, ω_o, u): both directions uniform on the sphere (θ = asin(2ξ − 1), φ uniform).
-fn cases(n: usize) -> Vec<(FiberAngles, FiberAngles, [f64; 4])> {
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let direction = |next: &mut dyn FnMut() -> f64| {
-        let theta = (2.0 * next() - 1.0).asin();
-        FiberAngles::new(theta, (next() - 0.5) * std::f64::consts::TAU)
-    };
-    (0..n)
-        .map(|_| {
-            let (wi, wo) = (direction(&mut next), direction(&mut next));
-            (wi, wo, [next(), next(), next(), next()])
-        })
-        .collect()
-}
 
 /// The three calls of one model, as closures over (ω_i, ω_o, u).
 struct Calls<'a> {

@@ -4,35 +4,14 @@
 //! instruction counts that a loaded machine does not disturb:
 //! `valgrind --tool=callgrind --toggle-collect='model_calls::run_*' target/release/examples/model_calls deon2011`
 //! then `callgrind_annotate --inclusive=yes` gives each `run_*`'s instructions for CALLS calls.
-use cuticle_fiber::absorption::mu_a_from_melanin;
-use cuticle_fiber::{
-    Chiang2016, DEon2011, FiberAngles, FiberModel, FiberParams, Marschner2003, NonSeparable,
-};
+use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, Marschner2003, NonSeparable};
 use std::hint::black_box;
 
 const CALLS: usize = 4096;
 
-type Case = (FiberAngles, FiberAngles, [f64; 4]);
-
-fn cases() -> Vec<Case> {
-    let mut state = 0x2545_F491_4F6C_DD1Du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let direction = |next: &mut dyn FnMut() -> f64| {
-        let theta = (2.0 * next() - 1.0).asin();
-        FiberAngles::new(theta, (next() - 0.5) * std::f64::consts::TAU)
-    };
-    (0..CALLS)
-        .map(|_| {
-            let (wi, wo) = (direction(&mut next), direction(&mut next));
-            (wi, wo, [next(), next(), next(), next()])
-        })
-        .collect()
-}
+#[path = "../benches/common/inputs.rs"]
+mod inputs;
+use inputs::Case;
 
 #[inline(never)]
 fn run_eval(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
@@ -85,12 +64,7 @@ fn warm_up(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
 }
 
 fn main() {
-    let p = FiberParams {
-        eta: 1.55,
-        beta: 0.3,
-        alpha: 2f64.to_radians(),
-        mu_a: mu_a_from_melanin(1.3, 0.0),
-    };
+    let p = inputs::params();
     let which = std::env::args().nth(1).unwrap_or_else(|| "deon2011".into());
     let (model, h): (Box<dyn FiberModel>, Option<f64>) = match which.as_str() {
         "deon2011" => (Box::new(DEon2011::new(p).unwrap().tabulated()), None),
@@ -102,7 +76,7 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let cases = cases();
+    let cases = inputs::cases(CALLS);
     // Outside the counted functions, so lazy state (quadrature rules, the lobe-energy table)
     // is built before counting.
     let warm = warm_up(model.as_ref(), h, &cases[..8]);
