@@ -92,28 +92,7 @@ impl AzimuthalTable {
     /// N_p(φ) weighted by attenuation and by selection together, from the same texels: what
     /// [`AzimuthalTable::eval_all`] gives for each weighting (the selection as its first channel).
     pub fn eval_all_both(&self, theta_i: f64, theta_d: f64, phi: f64) -> ([DVec3; 5], [DVec3; 5]) {
-        let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
-        let (d0, fd) = locate(self.az.eta / eta_perp(self.az.eta, theta_d), THETA_D_NODES);
-        let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
-        let slab = THETA_D_NODES * self.phi_nodes;
-        let blurred = |p: usize| {
-            let base = (p - 1) * THETA_I_NODES * slab;
-            let at = |i: usize, d: usize, f: usize| {
-                self.blurred[base + i * slab + d * self.phi_nodes + f]
-            };
-            let plane = |i: usize| {
-                let lo = lerp4(at(i, d0, f0), at(i, d0, f0 + 1), ff);
-                let hi = lerp4(at(i, d0 + 1, f0), at(i, d0 + 1, f0 + 1), ff);
-                lerp4(lo, hi, fd)
-            };
-            lerp4(plane(i0), plane(i0 + 1), fi)
-        };
-        let texels = [
-            blurred(1),
-            blurred(2),
-            blurred(3),
-            lerp4(self.rest[i0], self.rest[i0 + 1], fi),
-        ];
+        let texels = self.texels(theta_i, theta_d, phi);
         let rgb = |v: [f32; 4]| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
         let sel = |v: [f32; 4]| DVec3::splat(v[3] as f64);
         (
@@ -143,13 +122,26 @@ impl AzimuthalTable {
         phi: f64,
         weighting: Weighting,
     ) -> [DVec3; 5] {
-        let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
-        let (d0, fd) = locate(self.az.eta / eta_perp(self.az.eta, theta_d), THETA_D_NODES);
-        let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
         let pick = |v: [f32; 4]| match weighting {
             Weighting::Attenuation => DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64),
             Weighting::Selection => DVec3::splat(v[3] as f64),
         };
+        let [t1, t2, t3, rest] = self.texels(theta_i, theta_d, phi);
+        [
+            self.az.eval(0, theta_i, theta_d, phi, weighting),
+            pick(t1),
+            pick(t2),
+            pick(t3),
+            pick(rest),
+        ]
+    }
+
+    /// The trilinear taps of the blurred lobes p = 1, 2, 3 (over θ_i, θ_d's η/η′, |φ|) and the
+    /// remainder's linear tap over θ_i, each [attenuation RGB, selection].
+    fn texels(&self, theta_i: f64, theta_d: f64, phi: f64) -> [[f32; 4]; 4] {
+        let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
+        let (d0, fd) = locate(self.az.eta / eta_perp(self.az.eta, theta_d), THETA_D_NODES);
+        let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
         let slab = THETA_D_NODES * self.phi_nodes;
         let blurred = |p: usize| {
             let base = (p - 1) * THETA_I_NODES * slab;
@@ -161,14 +153,13 @@ impl AzimuthalTable {
                 let hi = lerp4(at(i, d0 + 1, f0), at(i, d0 + 1, f0 + 1), ff);
                 lerp4(lo, hi, fd)
             };
-            pick(lerp4(plane(i0), plane(i0 + 1), fi))
+            lerp4(plane(i0), plane(i0 + 1), fi)
         };
         [
-            self.az.eval(0, theta_i, theta_d, phi, weighting),
             blurred(1),
             blurred(2),
             blurred(3),
-            pick(lerp4(self.rest[i0], self.rest[i0 + 1], fi)),
+            lerp4(self.rest[i0], self.rest[i0 + 1], fi),
         ]
     }
 }

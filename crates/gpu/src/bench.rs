@@ -7,7 +7,7 @@ use crate::frame::GpuSeconds;
 use crate::renderer::{GpuError, GpuRenderer};
 use cuticle_render::Scene;
 use cuticle_render::Timings;
-use cuticle_render::bench::{median, with_absorption_edit};
+use cuticle_render::bench::{median, median_timings, with_absorption_edit};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -79,16 +79,4 @@ fn median_gpu(runs: &[GpuSeconds]) -> Option<GpuSeconds> {
         shading: m(|t| t.shading),
         resolve: m(|t| t.resolve),
     })
-}
-
-fn median_timings(runs: &[Timings]) -> Timings {
-    let m = |f: fn(&Timings) -> f64| median(runs.iter().map(f).collect());
-    Timings {
-        tables: m(|t| t.tables),
-        srbf_fit: m(|t| t.srbf_fit),
-        drawing: m(|t| t.drawing),
-        shadows: m(|t| t.shadows),
-        shading: m(|t| t.shading),
-        resolve: m(|t| t.resolve),
-    }
 }

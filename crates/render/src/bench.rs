@@ -60,7 +60,7 @@ pub fn with_absorption_edit(scene: &Scene, frame: usize) -> Scene {
 }
 
 /// The median of each field over `runs` (not empty).
-fn median_timings(runs: &[Timings]) -> Timings {
+pub fn median_timings(runs: &[Timings]) -> Timings {
     let m = |f: fn(&Timings) -> f64| median(runs.iter().map(f).collect());
     Timings {
         tables: m(|t| t.tables),
