@@ -12,6 +12,7 @@ use crate::frame::fiber_frames::{frame_at, strand_of_points};
 use crate::frame::progress::{Counter, Progress};
 use crate::frame::raster::{Coverage, EMPTY, rasterize};
 use crate::frame::shadow::{ShadowOptions, transmittance};
+use crate::frame::sub_lights::split_wide;
 use crate::scene::camera::View;
 use crate::scene::{Lobes, Method, Scene, light_to_world};
 use crate::srbf::cg_lobes::TrtShape;
@@ -505,8 +506,7 @@ fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f
 
 /// The SRBF lights in world space.
 fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
-    scene
-        .lights
+    split_wide(&scene.lights, scene.spec.shadows.split_bandwidth)
         .iter()
         .map(|l| WorldLight {
             direction: light_to_world(l.centre()),
