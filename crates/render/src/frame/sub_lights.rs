@@ -77,7 +77,9 @@ fn weights(light: &SrbfLight, set: &[DVec3], lambda_s: f64) -> Vec<f64> {
     );
     let mut w: Vec<f64> = set.iter().map(|&d| inner.basis(d)).collect();
     let largest = w.iter().copied().fold(0.0, f64::max);
-    w.iter_mut().filter(|x| **x < FLOOR * largest).for_each(|x| *x = 0.0);
+    w.iter_mut()
+        .filter(|x| **x < FLOOR * largest)
+        .for_each(|x| *x = 0.0);
     let sub_integral = SrbfLight::new(Vec3::Z, lambda_s as f32, Vec3::ONE).basis_integral();
     let scale = light.basis_integral() / (w.iter().sum::<f64>() * sub_integral);
     w.iter_mut().for_each(|x| *x *= scale);
@@ -109,13 +111,19 @@ mod tests {
     fn sub_lights_sum_to_the_wide_light() {
         let dirs = fibonacci_sphere(4001);
         for lambda in [0.75, 1.0, 1.3, 2.6] {
-            for centre in [Vec3::new(0.1, -0.9, 0.3), Vec3::Y, Vec3::new(0.7, 0.2, -0.5)] {
+            for centre in [
+                Vec3::new(0.1, -0.9, 0.3),
+                Vec3::Y,
+                Vec3::new(0.7, 0.2, -0.5),
+            ] {
                 let light = SrbfLight::new(centre.normalize(), lambda, Vec3::new(1.0, 0.5, 0.25));
                 let subs = split_wide(&[light], SPLIT_BANDWIDTH);
                 assert!(subs.len() > 1 && subs.len() <= max_sub_lights(SPLIT_BANDWIDTH));
                 assert!(subs.iter().all(|s| s.bandwidth == SPLIT_BANDWIDTH as f32));
                 let energy: DVec3 = subs.iter().map(|s| s.integral()).sum();
-                assert!((energy - light.integral()).abs().max_element() < 1e-4 * light.integral().x);
+                assert!(
+                    (energy - light.integral()).abs().max_element() < 1e-4 * light.integral().x
+                );
                 let (mut worst, mut sq) = (0.0f64, 0.0);
                 for &d in &dirs {
                     let e = evaluate_lights(&subs, d).x - light.radiance(d).x;
@@ -123,7 +131,10 @@ mod tests {
                     sq += e * e;
                 }
                 let rms = (sq / dirs.len() as f64).sqrt();
-                assert!(worst < 0.1 && rms < 0.02, "λ {lambda} {centre}: {worst} {rms}");
+                assert!(
+                    worst < 0.1 && rms < 0.02,
+                    "λ {lambda} {centre}: {worst} {rms}"
+                );
             }
         }
     }

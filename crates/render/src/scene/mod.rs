@@ -48,7 +48,7 @@ pub struct SceneSpec {
     /// `default` (the procedural sky), `constant:R,G,B` (or `constant:V`, a uniform
     /// environment for tests) or an .hdr/.exr lat-long map.
     pub env: String,
-        /// Rotation of the environment about the up axis, degrees.
+    /// Rotation of the environment about the up axis, degrees.
     pub env_rotate_deg: f64,
     /// Number J of SRBF lights to fit.
     pub lights: usize,
