@@ -57,6 +57,7 @@ pub mod bench;
 mod buffers;
 pub mod choice;
 pub mod device;
+pub mod draw;
 pub mod frame;
 pub mod renderer;
 pub mod resolve;
