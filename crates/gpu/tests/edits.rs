@@ -151,7 +151,7 @@ fn updating_one_strand_changes_only_its_pixels() {
     );
     // The CPU renderer with the strand's appearance painted the same way agrees.
     let mut painted = scene.clone();
-    painted.groom.appearance_mut()[s].absorption = Some(Absorption::SigmaA(paint));
+    painted.groom.appearance_mut()[s].absorption = Some(Absorption::MuA(paint));
     let (want, prepared, _) = cpu().render(&painted);
     let mask = agreeing_pixels(&gpu().coverage(&frame), &prepared.coverage);
     let e = relative_rmse(&after, &want, &mask.hair);
