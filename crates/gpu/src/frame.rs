@@ -8,9 +8,9 @@ use crate::draw::Drawing;
 use crate::shading::ShadeParams;
 use crate::shadows::ShadowMaps;
 use crate::strands::{StrandParams, StrandSource};
+use cuticle_render::Timings;
 use cuticle_render::tables::back_scattering::BackScatteringTables;
 use cuticle_render::tables::lobe_table::LobeTable;
-use cuticle_render::Timings;
 use std::sync::Arc;
 
 /// How many times each stage ran on this frame, and how many uploads an edit caused: an edit

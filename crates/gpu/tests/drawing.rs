@@ -32,7 +32,11 @@ struct Difference {
 }
 
 fn difference(a: &Coverage, b: &Coverage, strand: &[u32]) -> Difference {
-    assert_eq!(a.segment.len(), b.segment.len(), "drawings of different sizes");
+    assert_eq!(
+        a.segment.len(),
+        b.segment.len(),
+        "drawings of different sizes"
+    );
     let of = |s: u32| (s != EMPTY).then(|| strand[s as usize]);
     let (mut covered, mut differ, mut worst_t) = (0usize, 0usize, 0.0f64);
     for k in 0..a.segment.len() {
@@ -117,7 +121,10 @@ fn symmetric_difference(a: &[u32], b: &[u32]) -> usize {
 
 #[test]
 fn drawing_matches_the_cpu_raster_on_the_parity_scene() {
-    compare(&load(spec(150, "default", 8)), "parity scene 240 x 160, 2 x 2");
+    compare(
+        &load(spec(150, "default", 8)),
+        "parity scene 240 x 160, 2 x 2",
+    );
 }
 
 #[test]
@@ -133,7 +140,10 @@ fn drawing_matches_at_an_odd_size_with_3_by_3_subsamples() {
 fn drawing_matches_in_a_close_up_with_clipped_points() {
     let mut scene = load(spec(600, "default", 8));
     // The eye half a centimetre inside the hair nearest to it, looking at the head.
-    let (eye, target) = (DVec3::from(scene.camera.eye), DVec3::from(scene.camera.target));
+    let (eye, target) = (
+        DVec3::from(scene.camera.eye),
+        DVec3::from(scene.camera.target),
+    );
     let nearest = scene
         .groom
         .positions()
@@ -157,11 +167,12 @@ fn drawing_matches_in_a_close_up_with_clipped_points() {
         .zip(scene.groom.thickness())
         .filter_map(|(p, &t)| view.project(p.as_dvec3()).map(|q| (q, t)))
         .filter(|(q, t)| {
-            0.5 * *t as f64 * view.pixels_per_unit(q.depth as f64) * spec.supersampling as f64
-                > 2.0
+            0.5 * *t as f64 * view.pixels_per_unit(q.depth as f64) * spec.supersampling as f64 > 2.0
         })
         .count();
-    eprintln!("close-up: {behind} points behind the near plane, {wide} drawn over 4 subsamples wide");
+    eprintln!(
+        "close-up: {behind} points behind the near plane, {wide} drawn over 4 subsamples wide"
+    );
     assert!(behind > 0, "the close-up clips nothing");
     assert!(wide > 20, "the close-up draws no wide strand");
     let want = compare(&scene, "close-up 240 x 160, 2 x 2");
@@ -172,11 +183,20 @@ fn drawing_matches_in_a_close_up_with_clipped_points() {
         want.height,
         want.ss,
         (0..want.segment.len())
-            .map(|k| if k % sw == 0 { EMPTY } else { want.segment[k - 1] })
+            .map(|k| {
+                if k % sw == 0 {
+                    EMPTY
+                } else {
+                    want.segment[k - 1]
+                }
+            })
             .collect(),
         want.t.clone(),
     );
     let d = difference(&shifted, &want, &strand_of_points(&scene.groom));
-    eprintln!("one subsample to the side: {:.2e} show another strand", d.strand_share);
+    eprintln!(
+        "one subsample to the side: {:.2e} show another strand",
+        d.strand_share
+    );
     assert!(d.strand_share > 10.0 * 2e-3, "{}", d.strand_share);
 }

@@ -15,9 +15,9 @@
 mod common;
 
 use common::{cpu, gpu, load, spec};
-use cuticle_render::{Prepared, Scene, Timings};
 use cuticle_render::frame::renderer::shadows_of_lit;
 use cuticle_render::frame::shadow::transmittance;
+use cuticle_render::{Prepared, Scene, Timings};
 
 /// (mean |a − b|, share of entries off by more than 0.05).
 fn distance(a: &[f32], b: &[f32]) -> (f64, f64) {

@@ -321,15 +321,43 @@ impl Drawing {
             }
             dispatched += 1;
         };
-        pass(encoder, 0, &self.groups[0], Some(along(p.points)), true, false);
-        pass(encoder, 1, &self.groups[1], Some(along(p.segments)), false, false);
+        pass(
+            encoder,
+            0,
+            &self.groups[0],
+            Some(along(p.points)),
+            true,
+            false,
+        );
+        pass(
+            encoder,
+            1,
+            &self.groups[1],
+            Some(along(p.segments)),
+            false,
+            false,
+        );
         let mut scans = self.lines_scan.encode(&pipelines.scan, encoder);
         pass(encoder, 2, &self.groups[2], Some(1), false, false);
         pass(encoder, 3, &self.groups[3], None, false, false);
         pass(encoder, 3, &self.cover_second, None, false, false);
-        pass(encoder, 4, &self.groups[4], Some(along(subsamples)), false, false);
+        pass(
+            encoder,
+            4,
+            &self.groups[4],
+            Some(along(subsamples)),
+            false,
+            false,
+        );
         scans += self.seen_scan.encode(&pipelines.scan, encoder);
-        pass(encoder, 5, &self.groups[5], Some(along(p.points)), false, true);
+        pass(
+            encoder,
+            5,
+            &self.groups[5],
+            Some(along(p.points)),
+            false,
+            true,
+        );
         encoder.copy_buffer_to_buffer(&self.seen, p.points as u64 * 4, &self.count, 0, 4);
         dispatched + scans
     }

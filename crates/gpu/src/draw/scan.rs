@@ -57,7 +57,12 @@ pub struct Scan {
 }
 
 impl Scan {
-    pub fn new(device: &wgpu::Device, pipelines: &ScanPipelines, data: &wgpu::Buffer, n: usize) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        pipelines: &ScanPipelines,
+        data: &wgpu::Buffer,
+        n: usize,
+    ) -> Self {
         let mut levels = Vec::new();
         let (mut data, mut n) = (data.clone(), n);
         loop {
@@ -144,14 +149,21 @@ mod tests {
         let gpu = GpuDevice::new(Preference::Any).expect("a GPU adapter (lavapipe will do)");
         let pipelines = ScanPipelines::new(&gpu.device);
         for n in [1usize, 255, 256, 257, 70_000, 65_537 * 2 + 3] {
-            let values: Vec<u32> = (0..n as u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 29) & 3).collect();
-            let buffer = buffers::storage(&gpu.device, "values", bytemuck::cast_slice(&values), true);
+            let values: Vec<u32> = (0..n as u32)
+                .map(|i| (i.wrapping_mul(2_654_435_761) >> 29) & 3)
+                .collect();
+            let buffer =
+                buffers::storage(&gpu.device, "values", bytemuck::cast_slice(&values), true);
             let scan = Scan::new(&gpu.device, &pipelines, &buffer, n);
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
             scan.encode(&pipelines, &mut encoder);
             gpu.queue.submit([encoder.finish()]);
-            let got: Vec<u32> =
-                bytemuck::pod_collect_to_vec(&buffers::read(&gpu.device, &gpu.queue, &buffer, n * 4));
+            let got: Vec<u32> = bytemuck::pod_collect_to_vec(&buffers::read(
+                &gpu.device,
+                &gpu.queue,
+                &buffer,
+                n * 4,
+            ));
             let mut acc = 0u32;
             let want: Vec<u32> = values
                 .iter()

@@ -94,11 +94,17 @@ pub struct Agreeing {
 }
 
 pub fn agreeing_pixels(gpu: &Coverage, cpu: &Coverage) -> Agreeing {
-    assert_eq!(gpu.segment.len(), cpu.segment.len(), "drawings of different sizes");
+    assert_eq!(
+        gpu.segment.len(),
+        cpu.segment.len(),
+        "drawings of different sizes"
+    );
     let (mut all, mut hair, mut left_out) = (Vec::new(), Vec::new(), 0);
     for k in 0..gpu.width * gpu.height {
         let (x, y) = (k % gpu.width, k / gpu.width);
-        let agree = gpu.pixel_samples(x, y).all(|s| gpu.segment[s] == cpu.segment[s]);
+        let agree = gpu
+            .pixel_samples(x, y)
+            .all(|s| gpu.segment[s] == cpu.segment[s]);
         let shows = gpu.pixel_samples(x, y).any(|s| gpu.segment[s] != EMPTY);
         left_out += (shows && !agree) as usize;
         all.push(agree);
