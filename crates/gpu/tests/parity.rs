@@ -4,10 +4,9 @@
 //!
 //! The images are compared where the two drawings agree (every subsample of the pixel keeps
 //! the same segment): the drawing is the GPU's own since issue 10's last step, and where it
-//! differs from the CPU's, at the few subsamples tests/drawing.rs bounds (two of 12,616 on the
-//! sky scene, measured on lavapipe), a pixel moves by a subsample's share of the difference
-//! between two strands, which is the drawing's error, not the shading's; at most 1 % of the
-//! hair pixels may be left out so.
+//! differs from the CPU's, at the few subsamples tests/drawing.rs bounds and measures, a pixel
+//! moves by a subsample's share of the difference between two strands, which is the drawing's
+//! error, not the shading's; at most 1 % of the hair pixels may be left out so.
 //!
 //! Bounds: relative RMSE over hair pixels below 5e-3 (the eccentric fiber: 1e-3, see its test)
 //! and no pixel channel off by more than 1e-2
