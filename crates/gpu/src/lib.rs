@@ -43,7 +43,8 @@
 //! let ids = gpu.visibility(&frame); // strand id per subsample, for picking strands to paint
 //!                                   // (read back from the GPU's visibility buffer)
 //! scene.camera.eye[0] += 1.0;
-//! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again, no uploads
+//! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again (the groom
+//!                                  // re-sent, no table or strand record)
 //! let moved = gpu.shade(&mut frame, &scene);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
