@@ -1,17 +1,18 @@
 //! Geometry of a smooth circular fiber in the Bravais picture: the projected indices η′ and η″,
 //! the refracted offsets, the azimuthal deflection Φ(p, h) and the internal path length.
 
+use crate::special::sin_cos_quadrant;
 use std::f64::consts::PI;
 
 /// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
 pub fn eta_prime(eta: f64, theta: f64) -> f64 {
-    let (s, c) = theta.sin_cos();
+    let (s, c) = sin_cos_quadrant(theta);
     (eta * eta - s * s).max(0.0).sqrt() / c.abs().max(1e-12)
 }
 
 /// The second Bravais index for the parallel polarisation, η″ = η² cos θ / √(η² − sin²θ).
 pub fn eta_double_prime(eta: f64, theta: f64) -> f64 {
-    let (s, c) = theta.sin_cos();
+    let (s, c) = sin_cos_quadrant(theta);
     eta * eta * c.abs() / (eta * eta - s * s).max(1e-300).sqrt()
 }
 
