@@ -51,7 +51,7 @@ use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::ranges;
-use crate::special::{GaussLegendre, sin_cos_quadrant};
+use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -294,7 +294,7 @@ pub fn logistic_scale(beta_n: f64) -> f64 {
 
 /// The logistic density of scale s (Chiang et al. 2016 eq. 10), in the form stable for any x.
 fn logistic(x: f64, s: f64) -> f64 {
-    let e = (-x.abs() / s).exp();
+    let e = exp_fast(-x.abs() / s);
     e / (s * (1.0 + e) * (1.0 + e))
 }
 

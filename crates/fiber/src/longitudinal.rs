@@ -7,7 +7,9 @@
 //! belongs to its normalisation in dθ_o; here S is per steradian (docs/conventions.md §3), where the
 //! cosine is part of the measure, so M carries no such factor.
 
-use crate::special::{I0_AS_SPLIT, cos_quadrant, i0_as, i0_scaled_as, log_i0, log1m_exp_neg};
+use crate::special::{
+    I0_AS_SPLIT, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
+};
 use std::f64::consts::PI;
 
 /// The smallest variance M is evaluated with: below it the lobe is narrower than f64 resolves.
@@ -89,7 +91,8 @@ impl LongitudinalWidth {
     /// M for a cone and an outgoing inclination given by their sines and cosines (d'Eon et al. 2014 eq. 5).
     /// The exponent's log-space part stays one `exp`; I0 multiplies it (or, above x = 3.75,
     /// e^x joins the exponent and e^{−x} I0 multiplies), I0 by Abramowitz & Stegun 1964
-    /// eq. 9.8.1–9.8.2, so no logarithm is taken and no long series summed. Within 1e-6
+    /// eq. 9.8.1–9.8.2 and the exponential by [`exp_fast`], so no logarithm is taken and no long
+    /// series summed. Within 1e-6
     /// relative of [`LongitudinalWidth::eval_log_space`], the reference twin
     /// (`fast_m_matches_the_log_space_reference`).
     #[inline]
@@ -97,9 +100,9 @@ impl LongitudinalWidth {
         let x = (cos_cone * cos_o).abs() * self.inv_v;
         let e = self.log_norm + sin_cone * sin_o * self.inv_v;
         if x < I0_AS_SPLIT {
-            e.exp() * i0_as(x)
+            exp_fast(e) * i0_as(x)
         } else {
-            (e + x).exp() * i0_scaled_as(x)
+            exp_fast(e + x) * i0_scaled_as(x)
         }
     }
 
