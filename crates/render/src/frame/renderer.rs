@@ -484,7 +484,7 @@ impl BruteFrame<'_> {
 /// T̃ of every light at every point (`[p * lights + j]`), with opacity maps built only for
 /// lights that carry light: a fitted map leaves some SRBF coefficients zero, and their T̃
 /// (left at 1) is never read.
-fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f32> {
+pub fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f32> {
     let lit: Vec<usize> = (0..lights.len())
         .filter(|&j| lights[j].radiance != DVec3::ZERO)
         .collect();
@@ -504,7 +504,7 @@ fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f
 }
 
 /// The SRBF lights in world space.
-fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
+pub fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
     scene
         .lights
         .iter()
@@ -517,7 +517,7 @@ fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
 }
 
 /// The environment seen through each pixel centre.
-fn background(scene: &Scene, view: &View) -> Vec<DVec3> {
+pub fn background(scene: &Scene, view: &View) -> Vec<DVec3> {
     let (w, h) = (scene.spec.width, scene.spec.height);
     (0..w * h)
         .into_par_iter()
