@@ -93,7 +93,7 @@ const COS_COEFFS: [f64; 12] = {
 /// `f64::sin_cos`. Within 4e-16 of `f64::sin_cos` (`sin_cos_quadrant_matches_the_library`).
 #[inline]
 pub fn sin_cos_quadrant(x: f64) -> (f64, f64) {
-    if !(x.abs() <= std::f64::consts::FRAC_PI_2) {
+    if x.abs() > std::f64::consts::FRAC_PI_2 || x.is_nan() {
         return x.sin_cos();
     }
     let x2 = x * x;
@@ -105,7 +105,7 @@ pub fn sin_cos_quadrant(x: f64) -> (f64, f64) {
 /// cos x alone for |x| ≤ π/2, the cosine of [`sin_cos_quadrant`] (same series, same bound).
 #[inline]
 pub fn cos_quadrant(x: f64) -> f64 {
-    if !(x.abs() <= std::f64::consts::FRAC_PI_2) {
+    if x.abs() > std::f64::consts::FRAC_PI_2 || x.is_nan() {
         return x.cos();
     }
     let x2 = x * x;
@@ -131,7 +131,7 @@ const EXP2_32THS: [f64; 32] = [
     1.3252366431597413,
     1.3542555469368927,
     1.383909881963832,
-    1.4142135623730951,
+    std::f64::consts::SQRT_2,
     1.4451808069770467,
     1.4768261459394993,
     1.5091644275934228,
@@ -162,8 +162,9 @@ pub fn exp_fast(x: f64) -> f64 {
     }
     // Adding 1.5·2⁵² rounds to the nearest integer, which then sits in the low mantissa bits.
     const ROUND: f64 = 6_755_399_441_055_744.0;
-    const LN2_HI_32: f64 = 6.931_471_803_691_238_164_9e-1 / 32.0;
-    const LN2_LO_32: f64 = 1.908_214_929_270_587_700_02e-10 / 32.0;
+    // fdlibm's split of ln 2: the high part has 32 significant bits, so k · it is exact.
+    const LN2_HI_32: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000) / 32.0;
+    const LN2_LO_32: f64 = f64::from_bits(0x3dea_39ef_3579_3c76) / 32.0;
     let shifted = x * (32.0 * std::f64::consts::LOG2_E) + ROUND;
     let n = shifted.to_bits() as u32 as i32;
     let k = shifted - ROUND;
@@ -380,7 +381,7 @@ pub fn normal_quantile_fast(p: f64) -> f64 {
         (((((C[0] * q + C[1]) * q + C[2]) * q + C[3]) * q + C[4]) * q + C[5])
             / ((((D[0] * q + D[1]) * q + D[2]) * q + D[3]) * q + 1.0)
     };
-    let x = if p < 0.02425 {
+    if p < 0.02425 {
         tail((-2.0 * p.ln()).sqrt())
     } else if p > 1.0 - 0.02425 {
         -tail((-2.0 * (1.0 - p).ln()).sqrt())
@@ -389,8 +390,7 @@ pub fn normal_quantile_fast(p: f64) -> f64 {
         let r = q * q;
         (((((A[0] * r + A[1]) * r + A[2]) * r + A[3]) * r + A[4]) * r + A[5]) * q
             / (((((B[0] * r + B[1]) * r + B[2]) * r + B[3]) * r + B[4]) * r + 1.0)
-    };
-    x
+    }
 }
 
 /// The complementary error function, to full double precision (the `libm` crate's port of
