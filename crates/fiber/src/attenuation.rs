@@ -2,9 +2,9 @@
 //! that leaves after p internal segments, with the exact Fresnel factor at the 3D incidence
 //! angle and Beer–Lambert absorption along the refracted chord (d'Eon et al. 2011).
 
-use crate::bravais::{cos_theta_t, eta_prime, gamma_t, segment_transmittance};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::LobeValues;
+use crate::special::{exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 
 /// A(p, h) for p = 0…3 and the sum over p ≥ 4, for light inclined at `theta_i`.
@@ -14,15 +14,69 @@ use glam::DVec3;
 /// A₀ = f, A_p = (1 − f)² f^{p−1} T^p, and Σ_{p≥4} A_p = (1 − f)² f³ T⁴ / (1 − f T), so that a
 /// fiber with μ_a = 0 sums to exactly 1.
 pub fn attenuation(theta_i: f64, h: f64, eta: f64, mu_a: DVec3) -> LobeValues {
+    attenuation_at(Inclination::new(theta_i, eta), h, mu_a)
+}
+
+/// What A(p, h) needs of θ_i, found once per incident direction: cos θ_i, and the
+/// squared ratio (cos θ_i / √(η² − sin²θ_i))² = 1/η′² and 1/cos θ_t of the refracted ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inclination {
+    pub eta: f64,
+    pub cos_theta: f64,
+    /// 1/η′², η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
+    pub inv_eta_prime_sq: f64,
+    /// 1/cos θ_t, sin θ_t = sin θ / η.
+    pub inv_cos_theta_t: f64,
+}
+
+impl Inclination {
+    pub fn new(theta: f64, eta: f64) -> Self {
+        let (s, c) = sin_cos_quadrant(theta);
+        Self::from_sin_cos(s, c, eta)
+    }
+
+    /// The same from sin θ and cos θ (cos θ ≥ 0).
+    #[inline]
+    pub fn from_sin_cos(sin_theta: f64, cos_theta: f64, eta: f64) -> Self {
+        let s2 = sin_theta * sin_theta;
+        let e2 = eta * eta;
+        let c = cos_theta.abs().max(1e-12);
+        let inside = (e2 - s2).max(0.0);
+        Self {
+            eta,
+            cos_theta: cos_theta.abs(),
+            inv_eta_prime_sq: if inside > 0.0 { c * c / inside } else { 1.0 },
+            inv_cos_theta_t: 1.0 / (1.0 - s2 / e2).max(0.0).sqrt().max(1e-12),
+        }
+    }
+
+    /// The chord length factor 2 cos γ_t / cos θ_t at offset h (cos γ_t = √(1 − h²/η′²)),
+    /// so that a segment transmits exp(−μ_a ·) of it.
+    #[inline]
+    pub fn chord(&self, h: f64) -> f64 {
+        let cos_gamma_t = (1.0 - h * h * self.inv_eta_prime_sq).max(0.0).sqrt();
+        2.0 * cos_gamma_t * self.inv_cos_theta_t
+    }
+
+    /// The Fresnel factor at offset h: the 3D incidence cosine cos θ cos γ_i.
+    #[inline]
+    pub fn fresnel(&self, h: f64) -> f64 {
+        let cos_gamma_i = (1.0 - h * h).max(0.0).sqrt();
+        fresnel_dielectric(self.cos_theta * cos_gamma_i, self.eta)
+    }
+}
+
+/// A(p, h) as [`attenuation`] gives it, for an inclination prepared once: one Fresnel factor,
+/// one chord, three exponentials ([`exp_fast`], within 1e-14 of the exact one).
+#[inline]
+pub fn attenuation_at(inc: Inclination, h: f64, mu_a: DVec3) -> LobeValues {
     let h = h.clamp(-1.0, 1.0);
-    let cos_gamma_i = (1.0 - h * h).max(0.0).sqrt();
-    let f = fresnel_dielectric(theta_i.cos() * cos_gamma_i, eta);
-    let gt = gamma_t(h, eta_prime(eta, theta_i));
-    let ct = cos_theta_t(eta, theta_i);
+    let f = inc.fresnel(h);
+    let chord = inc.chord(h);
     let t = DVec3::new(
-        segment_transmittance(mu_a.x, gt, ct),
-        segment_transmittance(mu_a.y, gt, ct),
-        segment_transmittance(mu_a.z, gt, ct),
+        exp_fast(-mu_a.x * chord),
+        exp_fast(-mu_a.y * chord),
+        exp_fast(-mu_a.z * chord),
     );
     let k = (1.0 - f) * (1.0 - f);
     let a1 = k * t;
@@ -30,6 +84,22 @@ pub fn attenuation(theta_i: f64, h: f64, eta: f64, mu_a: DVec3) -> LobeValues {
     let a3 = a2 * f * t;
     let rest = a3 * f * t / (DVec3::ONE - f * t).max(DVec3::splat(1e-300));
     LobeValues([DVec3::splat(f), a1, a2, a3, rest])
+}
+
+/// The channel mean of Σ_p A_p = f + (1 − f)² T / (1 − f T) (the geometric series of
+/// [`attenuation`]), without the lobes: what the lobe-selection probability of R divides by.
+#[inline]
+pub fn mean_total_attenuation(inc: Inclination, h: f64, mu_a: DVec3) -> (f64, f64) {
+    let h = h.clamp(-1.0, 1.0);
+    let f = inc.fresnel(h);
+    let chord = inc.chord(h);
+    let k = (1.0 - f) * (1.0 - f);
+    let through = |mu: f64| {
+        let t = exp_fast(-mu * chord);
+        k * t / (1.0 - f * t).max(1e-300)
+    };
+    let total = f + (through(mu_a.x) + through(mu_a.y) + through(mu_a.z)) / 3.0;
+    (f, total)
 }
 
 #[cfg(test)]
@@ -57,5 +127,30 @@ mod tests {
         assert!((dark.0[0].x - clear.0[0].x).abs() < 1e-15);
         assert!((dark.0[2].x / clear.0[2].x - t * t).abs() < 1e-12);
         assert!((dark.0[3].x / clear.0[3].x - t * t * t).abs() < 1e-12);
+    }
+
+    /// The prepared inclination reproduces the Bravais geometry (η′, γ_t, θ_t of
+    /// [`crate::bravais`]) and the closed-form total matches the lobes' sum.
+    #[test]
+    fn prepared_inclination_matches_the_bravais_geometry() {
+        use crate::bravais::{cos_theta_t, eta_prime, gamma_t, segment_transmittance};
+        let mu = DVec3::new(0.2, 0.7, 1.9);
+        for &theta in &[-1.5, -0.6, 0.0, 0.4, 1.3] {
+            let inc = Inclination::new(theta, 1.55);
+            for &h in &[-0.99, -0.3, 0.0, 0.5, 1.0] {
+                let gt = gamma_t(h, eta_prime(1.55, theta));
+                let ct = cos_theta_t(1.55, theta);
+                let t = segment_transmittance(0.7, gt, ct);
+                assert!(
+                    (t - (-0.7 * inc.chord(h)).exp()).abs() < 1e-13,
+                    "{theta} {h}"
+                );
+                let a = attenuation_at(inc, h, mu);
+                let (f, total) = mean_total_attenuation(inc, h, mu);
+                assert_eq!(f, a.0[0].x);
+                let want = crate::lobe::channel_mean(a.total());
+                assert!((total - want).abs() < 1e-14 * want, "{total} {want}");
+            }
+        }
     }
 }

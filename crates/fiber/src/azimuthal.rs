@@ -11,7 +11,7 @@ use crate::attenuation::attenuation;
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
-use crate::special::{GaussLegendre, normal_pdf};
+use crate::special::{GaussLegendre, normal_pdf_fast};
 use crate::tilted_attenuation::{tilted_attenuation, tilted_reflectance};
 use crate::tilted_mirror::tilted_mirror_offset;
 use glam::DVec3;
@@ -28,7 +28,7 @@ pub fn wrapped_gaussian(x: f64, v: f64) -> f64 {
     let x = crate::frame::wrap_pi(x);
     let images = (3.0 * sigma / (2.0 * PI)).ceil() as i32 + 1;
     (-images..=images)
-        .map(|k| normal_pdf((x - 2.0 * PI * k as f64) / sigma))
+        .map(|k| normal_pdf_fast((x - 2.0 * PI * k as f64) / sigma))
         .sum::<f64>()
         / sigma
 }

@@ -1,17 +1,18 @@
 //! Geometry of a smooth circular fiber in the Bravais picture: the projected indices η′ and η″,
 //! the refracted offsets, the azimuthal deflection Φ(p, h) and the internal path length.
 
+use crate::special::{exp_fast, sin_cos_quadrant};
 use std::f64::consts::PI;
 
 /// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
 pub fn eta_prime(eta: f64, theta: f64) -> f64 {
-    let (s, c) = theta.sin_cos();
+    let (s, c) = sin_cos_quadrant(theta);
     (eta * eta - s * s).max(0.0).sqrt() / c.abs().max(1e-12)
 }
 
 /// The second Bravais index for the parallel polarisation, η″ = η² cos θ / √(η² − sin²θ).
 pub fn eta_double_prime(eta: f64, theta: f64) -> f64 {
-    let (s, c) = theta.sin_cos();
+    let (s, c) = sin_cos_quadrant(theta);
     eta * eta * c.abs() / (eta * eta - s * s).max(1e-300).sqrt()
 }
 
@@ -36,7 +37,7 @@ pub fn cos_theta_t(eta: f64, theta: f64) -> f64 {
 /// Transmittance of one internal segment: exp(−2 μ_a cos γ_t / cos θ_t), the chord of a unit
 /// circle at refracted offset γ_t, stretched by the inclination (docs/conventions.md §8 erratum).
 pub fn segment_transmittance(mu_a: f64, gamma_t: f64, cos_theta_t: f64) -> f64 {
-    (-2.0 * mu_a * gamma_t.cos() / cos_theta_t.max(1e-12)).exp()
+    exp_fast(-2.0 * mu_a * gamma_t.cos() / cos_theta_t.max(1e-12))
 }
 
 #[cfg(test)]

@@ -43,8 +43,7 @@
 //! remainder). The density is closed form, Σ_p (A_p / Σ A) M_p N_p, so weights are S_h / pdf;
 //! with σ_a = 0 they are exactly 1. The far-field [`FiberModel::sample`] first draws h uniformly.
 
-use crate::attenuation::attenuation;
-use crate::bravais::{eta_prime, gamma_t};
+use crate::attenuation::{Inclination, attenuation_at};
 use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
@@ -52,7 +51,7 @@ use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::ranges;
-use crate::special::GaussLegendre;
+use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -87,6 +86,8 @@ struct Offset {
     /// γ_i = asin h and γ_t = asin(h / η′), shared by every lobe's Φ(p, h).
     gamma_i: f64,
     gamma_t: f64,
+    /// sin θ_i and cos θ_i.
+    sin_cos_i: (f64, f64),
 }
 
 impl Chiang2016 {
@@ -135,8 +136,14 @@ impl Chiang2016 {
 
     /// M_p(θ_o) for every lobe.
     fn m_all(&self, theta_i: f64, theta_o: f64) -> [f64; LOBES] {
-        let (si, ci) = theta_i.sin_cos();
-        let (so, co) = theta_o.sin_cos();
+        let (si, ci) = sin_cos_quadrant(theta_i);
+        self.m_from(si, ci, theta_o)
+    }
+
+    /// M_p(θ_o) for every lobe, from sin θ_i and cos θ_i.
+    #[inline]
+    fn m_from(&self, si: f64, ci: f64, theta_o: f64) -> [f64; LOBES] {
+        let (so, co) = sin_cos_quadrant(theta_o);
         // The cone −θ_i + shift, by the angle-sum identities.
         std::array::from_fn(|p| {
             let (ss, cs) = self.shift_sin_cos[p];
@@ -144,35 +151,47 @@ impl Chiang2016 {
         })
     }
 
+    /// What every lobe shares at offset h for light at θ_i: one sine and cosine of θ_i, the
+    /// attenuation through the prepared [`Inclination`], and γ_i, γ_t for the deflections.
     fn offset(&self, theta_i: f64, h: f64) -> Offset {
         let h = h.clamp(-1.0, 1.0);
-        let att = attenuation(theta_i, h, self.params.eta, self.params.mu_a);
-        let eta_prime = eta_prime(self.params.eta, theta_i);
+        let (si, ci) = sin_cos_quadrant(theta_i);
+        let inc = Inclination::from_sin_cos(si, ci, self.params.eta);
+        let att = attenuation_at(inc, h, self.params.mu_a);
         Offset {
             a: [att.0[0], att.0[1], att.0[2], att.0[3] + att.0[4]],
             gamma_i: h.asin(),
-            gamma_t: gamma_t(h, eta_prime),
+            // γ_t = asin(h / η′) (crate::bravais::gamma_t).
+            gamma_t: (h * inc.inv_eta_prime_sq.sqrt()).clamp(-1.0, 1.0).asin(),
+            sin_cos_i: (si, ci),
         }
     }
 
     /// N_p(φ; h) for every lobe.
     fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
+        let k = 1.0 / self.trim;
         std::array::from_fn(|p| match p {
             3 => 0.5 / PI,
-            _ => logistic(wrap_pi(phi - at.deflection(p)), self.s) / self.trim,
+            _ => logistic(wrap_pi(phi - at.deflection(p)), self.s) * k,
         })
+    }
+
+    /// M_p at θ_o for the θ_i of an offset.
+    fn m_at(&self, at: &Offset, theta_o: f64) -> [f64; LOBES] {
+        let (si, ci) = at.sin_cos_i;
+        self.m_from(si, ci, theta_o)
     }
 
     /// The near-field lobes at offset h (module documentation).
     fn near(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> LobeValues {
-        let m = self.m_all(wi.theta, wo.theta);
+        let m = self.m_at(at, wo.theta);
         let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
         near_lobes(&m, &n, &at.a)
     }
 
     /// The near-field sampling density at offset h.
     fn near_pdf(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> f64 {
-        let m = self.m_all(wi.theta, wo.theta);
+        let m = self.m_at(at, wo.theta);
         let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
         near_density(&m, &n, &at.a)
     }
@@ -203,14 +222,18 @@ impl Chiang2016 {
     /// The near-field sample at offset h from three uniform numbers (module documentation).
     fn sample_near(&self, wi: FiberAngles, at: &Offset, u: [f64; 3]) -> Option<FiberSample> {
         let (p, u_phi) = select_and_remap(&selection(&at.a), u[0]);
-        let theta_o = self.longitudinal(p, wi.theta).sample(u[1], u[2]);
+        let (si, ci) = at.sin_cos_i;
+        let (ss, cs) = self.shift_sin_cos[p];
+        // The cone −θ_i + shift, by the angle-sum identities.
+        let sin_o = self.widths[p].sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[1], u[2]);
+        let theta_o = sin_o.asin();
         let phi = match p {
             3 => 2.0 * PI * u_phi - PI,
             _ => at.deflection(p) + sample_trimmed_logistic(u_phi, self.s),
         };
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
         // M and N once for both the density and S (near_pdf's and near's arithmetic).
-        let m = self.m_all(wi.theta, wo.theta);
+        let m = self.m_at(at, wo.theta);
         let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
         let pdf = near_density(&m, &n, &at.a);
         let lobe = if p == 3 {
@@ -271,7 +294,7 @@ pub fn logistic_scale(beta_n: f64) -> f64 {
 
 /// The logistic density of scale s (Chiang et al. 2016 eq. 10), in the form stable for any x.
 fn logistic(x: f64, s: f64) -> f64 {
-    let e = (-x.abs() / s).exp();
+    let e = exp_fast(-x.abs() / s);
     e / (s * (1.0 + e) * (1.0 + e))
 }
 
@@ -393,6 +416,7 @@ impl FiberModel for AtOffset<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::attenuation::attenuation;
     use crate::furnace::{FurnaceRule, albedo};
     use crate::testing::{check_weights, chi2_test};
 

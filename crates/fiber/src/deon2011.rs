@@ -15,16 +15,18 @@
 //! Reciprocity: M with a cone at −θ_i + shift is not symmetric under exchanging ω_i and ω_o
 //! (d'Eon et al. 2014 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
 
+use crate::attenuation::{Inclination, mean_total_attenuation};
 use crate::azimuthal::{AzimuthalScattering, Weighting};
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::{FiberAngles, wrap_pi};
+use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
-use crate::special::normal_quantile;
+use crate::special::{cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
 use crate::table::AzimuthalTable;
-use glam::DVec3;
+use glam::{DVec3, Vec4};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -124,24 +126,69 @@ impl DEon2011 {
     /// table's (RGB, selection) texels read once. The same arithmetic as [`FiberModel::eval`]
     /// and [`FiberModel::pdf`], so the results are identical to theirs.
     fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (DVec3, f64) {
+        if let Some(pair) = self.tabulated_pair(wi, wo) {
+            return (pair.lobes().total(), self.pair_pdf(&pair));
+        }
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
-        let (s, sel) = match &self.table {
-            Some(t) => t.eval_all_both(wi.theta, theta_d, phi),
-            None => (
-                self.azimuthal_all(wi.theta, theta_d, phi, Weighting::Attenuation),
-                self.azimuthal_all(wi.theta, theta_d, phi, Weighting::Selection),
-            ),
-        };
+        let s = self.azimuthal_all(wi.theta, theta_d, phi, Weighting::Attenuation);
+        let sel = self.azimuthal_all(wi.theta, theta_d, phi, Weighting::Selection);
         let m = self.m_all(wi, wo);
         let pdf = LobeValues::separable(m, sel).total().x;
         (LobeValues::separable(m, s).total(), pdf)
     }
 
+    /// The tabulated fast path's shared values for one (ω_i, ω_o), when the model has a table
+    /// and untilted scales: M_p from the sines and cosines of θ_i and θ_o, the table point
+    /// from cos(θ_o − θ_i) by the half-angle identities, and R's root h = −sin(φ/2) from
+    /// cos(φ/2) alone.
+    #[inline]
+    fn tabulated_pair(&self, wi: FiberAngles, wo: FiberAngles) -> Option<Pair> {
+        let table = self.table.as_deref()?;
+        if self.azimuthal.scale_tilt != 0.0 {
+            return None;
+        }
+        let (si, ci) = sin_cos_quadrant(wi.theta);
+        let (so, co) = sin_cos_quadrant(wo.theta);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let cos_2d = ci * co + si * so;
+        let point = table.point(wi.theta, table.eta_ratio_from_cos_2d(cos_2d), phi);
+        let cos_half_phi = cos_quadrant(0.5 * phi).max(0.0);
+        Some(Pair {
+            m: self.m_from(si, ci, so, co),
+            taps: table.taps(point),
+            inclination: Inclination::from_sin_cos(si, ci, self.params.eta),
+            cos_half_phi,
+        })
+    }
+
+    /// Σ_p M_p N_p with N_p weighted by lobe selection: R's selection probability
+    /// f / mean(Σ_p A_p) at its root from the closed-form total (no lobe-by-lobe attenuation).
+    #[inline]
+    fn pair_pdf(&self, pair: &Pair) -> f64 {
+        let c = pair.cos_half_phi;
+        let h = (1.0 - c * c).max(0.0).sqrt();
+        let (f, total) = mean_total_attenuation(pair.inclination, h, self.params.mu_a);
+        let sel_r = if total > 0.0 { f / total } else { 0.0 };
+        let [t1, t2, t3, rest] = pair.taps;
+        let m = pair.m;
+        m[0] * (0.25 * c * sel_r)
+            + m[1] * t1.w as f64
+            + m[2] * t2.w as f64
+            + m[3] * t3.w as f64
+            + m[3] * rest.w as f64
+    }
+
     /// M_p(θ_o) of R, TT, TRT and TRRT (the remainder shares TRRT's).
     fn m_all(&self, wi: FiberAngles, wo: FiberAngles) -> [f64; 4] {
-        let (si, ci) = wi.theta.sin_cos();
-        let (so, co) = wo.theta.sin_cos();
+        let (si, ci) = sin_cos_quadrant(wi.theta);
+        let (so, co) = sin_cos_quadrant(wo.theta);
+        self.m_from(si, ci, so, co)
+    }
+
+    /// M_p from sin θ_i, cos θ_i, sin θ_o, cos θ_o.
+    #[inline]
+    fn m_from(&self, si: f64, ci: f64, so: f64, co: f64) -> [f64; 4] {
         // The cone −θ_i + shift, by the angle-sum identities.
         std::array::from_fn(|p| {
             let (width, ss, cs) = self.prepared[p];
@@ -162,13 +209,21 @@ impl FiberModel for DEon2011 {
     }
 
     fn eval(&self, wi: FiberAngles, wo: FiberAngles) -> LobeValues {
-        self.density(wi, wo, Weighting::Attenuation)
+        match self.tabulated_pair(wi, wo) {
+            Some(pair) => pair.lobes(),
+            None => self.density(wi, wo, Weighting::Attenuation),
+        }
     }
 
     fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
         let h = 2.0 * u[0] - 1.0;
         let (p, u_phi) = select_and_remap(&self.azimuthal.selection(wi.theta, h), u[1]);
-        let theta_o = self.longitudinal(p, wi.theta).sample(u[2], u[3]);
+        let (si, ci) = sin_cos_quadrant(wi.theta);
+        let (width, ss, cs) = self.prepared[p.min(3)];
+        // The cone −θ_i + shift, by the angle-sum identities.
+        let theta_o = width
+            .sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3])
+            .asin();
         let theta_d = 0.5 * (theta_o - wi.theta);
         let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
@@ -177,7 +232,41 @@ impl FiberModel for DEon2011 {
     }
 
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
-        self.density(wi, wo, Weighting::Selection).total().x
+        match self.tabulated_pair(wi, wo) {
+            Some(pair) => self.pair_pdf(&pair),
+            None => self.density(wi, wo, Weighting::Selection).total().x,
+        }
+    }
+}
+
+/// What eval and pdf share for one (ω_i, ω_o) on the tabulated path.
+struct Pair {
+    m: [f64; 4],
+    /// TT, TRT, TRRT and the remainder: (r, g, b, selection).
+    taps: [Vec4; 4],
+    inclination: Inclination,
+    /// cos(φ/2): R's single root h = −sin(φ/2) has cos γ_i = cos(φ/2).
+    cos_half_phi: f64,
+}
+
+impl Pair {
+    /// S per lobe: N_R = ¼ cos(φ/2) A(0, h) (d'Eon et al. 2014 §2.3), the rest from the table.
+    #[inline]
+    fn lobes(&self) -> LobeValues {
+        let c = self.cos_half_phi;
+        let f = fresnel_dielectric(self.inclination.cos_theta * c, self.inclination.eta);
+        let [t1, t2, t3, rest] = self.taps;
+        let n_r = DVec3::splat(0.25 * c * f);
+        LobeValues::separable(
+            self.m,
+            [
+                n_r,
+                t1.truncate().as_dvec3(),
+                t2.truncate().as_dvec3(),
+                t3.truncate().as_dvec3(),
+                rest.truncate().as_dvec3(),
+            ],
+        )
     }
 }
 
@@ -188,7 +277,7 @@ pub(crate) fn sample_phi(az: &AzimuthalScattering, p: usize, h: f64, theta_d: f6
         0 => azimuthal_deflection(0, h, az.eta),
         4 => 2.0 * PI * u - PI,
         _ => {
-            let offset = az.v_n[p].sqrt() * normal_quantile(u.clamp(1e-16, 1.0 - 1e-16));
+            let offset = az.v_n[p].sqrt() * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16));
             azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + offset
         }
     }

@@ -77,8 +77,23 @@ impl FiberFrame {
     }
 }
 
-/// Wraps an angle to (−π, π].
+/// Wraps an angle to (−π, π]. Angles within one turn of that range (a difference of two
+/// azimuths, a deflection plus an offset) take one addition; others a remainder.
+#[inline]
 pub fn wrap_pi(x: f64) -> f64 {
+    if x > -PI && x <= PI {
+        x
+    } else if x > PI && x <= 3.0 * PI {
+        x - 2.0 * PI
+    } else if x > -3.0 * PI && x <= -PI {
+        x + 2.0 * PI
+    } else {
+        wrap_pi_remainder(x)
+    }
+}
+
+#[cold]
+fn wrap_pi_remainder(x: f64) -> f64 {
     let y = (x + PI).rem_euclid(2.0 * PI) - PI;
     if y == -PI { PI } else { y }
 }
@@ -114,5 +129,14 @@ mod tests {
         assert_eq!(wrap_pi(-PI), PI);
         assert!((wrap_pi(3.0 * PI + 0.1) - (-PI + 0.1)).abs() < 1e-12);
         assert!((wrap_pi(-0.2) + 0.2).abs() < 1e-15);
+        // Each branch lands in (−π, π] and agrees with the remainder to rounding.
+        for k in -2000..=2000 {
+            let x = k as f64 * 0.0137 + 0.001;
+            let y = wrap_pi(x);
+            assert!(y > -PI && y <= PI, "{x} -> {y}");
+            assert!((y - wrap_pi_remainder(x)).abs() < 1e-14, "{x}: {y}");
+        }
+        assert_eq!(wrap_pi(3.0 * PI), PI);
+        assert!(wrap_pi(f64::NAN).is_nan());
     }
 }

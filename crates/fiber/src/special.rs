@@ -39,7 +39,7 @@ const I0_COEFFS: [f64; I0_TERMS] = {
 /// I0(x) for |x| ≤ 20 by the same power series as [`i0_series`], as a polynomial in x²/4 with
 /// fixed coefficients and as many terms as the argument needs (no division, two Horner chains
 /// in (x²/4)²): within 2e-15 relative of [`i0_series`] (`i0_horner_matches_the_series`
-/// measures it). The fast path of [`crate::longitudinal::LongitudinalWidth::eval`].
+/// measures it).
 #[inline]
 pub fn i0_horner(x: f64) -> f64 {
     let q = 0.25 * x * x;
@@ -60,6 +60,151 @@ pub fn i0_horner(x: f64) -> f64 {
         odd = odd * q2 + I0_COEFFS[k + 1];
     }
     even + q * odd
+}
+
+/// (−1)ᵏ/(2k+1)! and (−1)ᵏ/(2k)!: the Taylor coefficients of sin x / x and cos x in x².
+const SIN_COEFFS: [f64; 11] = {
+    let mut c = [0.0; 11];
+    let mut fact = 1.0;
+    let mut k = 0;
+    while k < 11 {
+        // fact = (2k+1)! here.
+        c[k] = if k % 2 == 0 { 1.0 } else { -1.0 } / fact;
+        fact *= ((2 * k + 2) * (2 * k + 3)) as f64;
+        k += 1;
+    }
+    c
+};
+const COS_COEFFS: [f64; 12] = {
+    let mut c = [0.0; 12];
+    let mut fact = 1.0;
+    let mut k = 0;
+    while k < 12 {
+        c[k] = if k % 2 == 0 { 1.0 } else { -1.0 } / fact;
+        fact *= ((2 * k + 1) * (2 * k + 2)) as f64;
+        k += 1;
+    }
+    c
+};
+
+/// (sin x, cos x) for |x| ≤ π/2 — every inclination θ and every half-azimuth φ/2 — by their
+/// Taylor series in x² (sin to x²¹, cos to x²², alternating, so the first term dropped bounds
+/// the error: 3e-17 at π/2), without the range reduction a general sine needs; other x go to
+/// `f64::sin_cos`. Within 4e-16 of `f64::sin_cos` (`sin_cos_quadrant_matches_the_library`).
+#[inline]
+pub fn sin_cos_quadrant(x: f64) -> (f64, f64) {
+    if x.abs() > std::f64::consts::FRAC_PI_2 || x.is_nan() {
+        return x.sin_cos();
+    }
+    let x2 = x * x;
+    let s = SIN_COEFFS.iter().rev().fold(0.0, |acc, c| acc * x2 + c);
+    let c = COS_COEFFS.iter().rev().fold(0.0, |acc, c| acc * x2 + c);
+    (x * s, c)
+}
+
+/// cos x alone for |x| ≤ π/2, the cosine of [`sin_cos_quadrant`] (same series, same bound).
+#[inline]
+pub fn cos_quadrant(x: f64) -> f64 {
+    if x.abs() > std::f64::consts::FRAC_PI_2 || x.is_nan() {
+        return x.cos();
+    }
+    let x2 = x * x;
+    COS_COEFFS.iter().rev().fold(0.0, |acc, c| acc * x2 + c)
+}
+
+/// 2^(j/32), j = 0…31, correctly rounded (50-digit decimal arithmetic): [`exp_fast`]'s table.
+#[allow(clippy::excessive_precision)]
+const EXP2_32THS: [f64; 32] = [
+    1.0,
+    1.0218971486541166,
+    1.0442737824274138,
+    1.0671404006768237,
+    1.0905077326652577,
+    1.1143867425958924,
+    1.1387886347566916,
+    1.1637248587775775,
+    1.189207115002721,
+    1.215247359980469,
+    1.241857812073484,
+    1.2690509571917332,
+    1.2968395546510096,
+    1.3252366431597413,
+    1.3542555469368927,
+    1.383909881963832,
+    std::f64::consts::SQRT_2,
+    1.4451808069770467,
+    1.4768261459394993,
+    1.5091644275934228,
+    1.5422108254079407,
+    1.5759808451078865,
+    1.6104903319492543,
+    1.645755478153965,
+    1.681792830507429,
+    1.718619298122478,
+    1.7562521603732995,
+    1.7947090750031072,
+    1.8340080864093424,
+    1.8741676341103,
+    1.9152065613971474,
+    1.9571441241754002,
+];
+
+/// eˣ to 1e-14 relative (`exp_fast_is_within_its_bound`): x = (32m + j) ln 2 / 32 + r with
+/// |r| ≤ ln 2 / 64 (ln 2 split in two so the product is exact, Cody & Waite 1980), e^r by its
+/// Taylor series to r⁵ (the first term dropped, r⁶/6!, is 2.2e-15), 2^(j/32) from a table and
+/// 2ᵐ put in the exponent bits: no call, about half the instructions of the C library's
+/// `exp`. Outside (−708, 709), where the result leaves the normal range, and for NaN it
+/// defers to `f64::exp`.
+#[inline]
+pub fn exp_fast(x: f64) -> f64 {
+    if !(x > -708.0 && x < 709.0) {
+        return x.exp();
+    }
+    // Adding 1.5·2⁵² rounds to the nearest integer, which then sits in the low mantissa bits.
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    // fdlibm's split of ln 2: the high part has 32 significant bits, so k · it is exact.
+    const LN2_HI_32: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000) / 32.0;
+    const LN2_LO_32: f64 = f64::from_bits(0x3dea_39ef_3579_3c76) / 32.0;
+    let shifted = x * (32.0 * std::f64::consts::LOG2_E) + ROUND;
+    let n = shifted.to_bits() as u32 as i32;
+    let k = shifted - ROUND;
+    let r = (x - k * LN2_HI_32) - k * LN2_LO_32;
+    let p = 1.0 + r * (1.0 + r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0)))));
+    let m = (n >> 5) as i64;
+    p * EXP2_32THS[(n & 31) as usize] * f64::from_bits(((m + 1023) as u64) << 52)
+}
+
+/// Where [`i0_as`] leaves Abramowitz & Stegun 9.8.1 for 9.8.2.
+pub const I0_AS_SPLIT: f64 = 3.75;
+
+/// I0(x) for |x| ≤ 3.75 by Abramowitz & Stegun 1964 eq. 9.8.1, a polynomial of degree 6 in
+/// (x/3.75)²: within 2e-7 relative of [`i0_series`] (`i0_as_is_within_its_bound` measures it).
+/// The fast path of [`crate::longitudinal::LongitudinalWidth::eval`], six multiply-adds where
+/// the series takes up to 38.
+#[inline]
+pub fn i0_as(x: f64) -> f64 {
+    let t = x * (1.0 / I0_AS_SPLIT);
+    let t = t * t;
+    1.0 + t
+        * (3.515_622_9
+            + t * (3.089_942_4
+                + t * (1.206_749_2 + t * (0.265_973_2 + t * (0.036_076_8 + t * 0.004_581_3)))))
+}
+
+/// e^{−x} I0(x) for x ≥ 3.75 by Abramowitz & Stegun 1964 eq. 9.8.2, √x e^{−x} I0(x) as a
+/// polynomial of degree 8 in 3.75/x: within 6e-7 relative of the exact function
+/// (`i0_as_is_within_its_bound`).
+#[inline]
+pub fn i0_scaled_as(x: f64) -> f64 {
+    let t = I0_AS_SPLIT / x;
+    let poly = 0.398_942_28
+        + t * (0.013_285_92
+            + t * (0.002_253_19
+                + t * (-0.001_575_65
+                    + t * (0.009_162_81
+                        + t * (-0.020_577_06
+                            + t * (0.026_355_37 + t * (-0.016_476_33 + t * 0.003_923_77)))))));
+    poly / x.sqrt()
 }
 
 /// e^{−x} I0(x) for x ≥ 20, the asymptotic expansion of [`log_i0`] without its logarithm.
@@ -180,9 +325,28 @@ pub fn normal_pdf(x: f64) -> f64 {
     (-0.5 * x * x).exp() / (2.0 * PI).sqrt()
 }
 
+/// [`normal_pdf`] through [`exp_fast`]: within 1e-14 relative of it (the bound of
+/// `exp_fast_is_within_its_bound`), for the models' per-call Gaussians.
+#[inline]
+pub fn normal_pdf_fast(x: f64) -> f64 {
+    exp_fast(-0.5 * x * x) * (1.0 / (2.0 * PI).sqrt())
+}
+
 /// The standard normal quantile Φ⁻¹(p) for p ∈ (0, 1): Acklam's rational approximation
 /// followed by one Halley step on erfc, accurate to ~1e-15 relative.
 pub fn normal_quantile(p: f64) -> f64 {
+    let x = normal_quantile_fast(p);
+    let p = p.clamp(1e-300, 1.0 - 1e-16);
+    let e = 0.5 * erfc(-x / std::f64::consts::SQRT_2) - p;
+    let u = e * (2.0 * PI).sqrt() * (0.5 * x * x).exp();
+    x - u / (1.0 + 0.5 * x * u)
+}
+
+/// Acklam's rational approximation of Φ⁻¹(p) alone, without [`normal_quantile`]'s Halley
+/// step: within 1.2e-9 relative of it (`normal_quantile_fast_is_within_its_bound`). Enough to
+/// place a sampled offset, whose density the models report from their own evaluation.
+#[inline]
+pub fn normal_quantile_fast(p: f64) -> f64 {
     const A: [f64; 6] = [
         -39.69683028665376,
         220.9460984245205,
@@ -217,7 +381,7 @@ pub fn normal_quantile(p: f64) -> f64 {
         (((((C[0] * q + C[1]) * q + C[2]) * q + C[3]) * q + C[4]) * q + C[5])
             / ((((D[0] * q + D[1]) * q + D[2]) * q + D[3]) * q + 1.0)
     };
-    let x = if p < 0.02425 {
+    if p < 0.02425 {
         tail((-2.0 * p.ln()).sqrt())
     } else if p > 1.0 - 0.02425 {
         -tail((-2.0 * (1.0 - p).ln()).sqrt())
@@ -226,10 +390,7 @@ pub fn normal_quantile(p: f64) -> f64 {
         let r = q * q;
         (((((A[0] * r + A[1]) * r + A[2]) * r + A[3]) * r + A[4]) * r + A[5]) * q
             / (((((B[0] * r + B[1]) * r + B[2]) * r + B[3]) * r + B[4]) * r + 1.0)
-    };
-    let e = 0.5 * erfc(-x / std::f64::consts::SQRT_2) - p;
-    let u = e * (2.0 * PI).sqrt() * (0.5 * x * x).exp();
-    x - u / (1.0 + 0.5 * x * u)
+    }
 }
 
 /// The complementary error function, to full double precision (the `libm` crate's port of
@@ -319,6 +480,71 @@ mod tests {
     }
 
     #[test]
+    fn sin_cos_quadrant_matches_the_library() {
+        let mut worst: f64 = 0.0;
+        let half = std::f64::consts::FRAC_PI_2;
+        for k in -100_000..=100_000 {
+            let x = half * k as f64 / 100_000.0;
+            let (s, c) = sin_cos_quadrant(x);
+            assert_eq!(c, cos_quadrant(x));
+            let (ws, wc) = x.sin_cos();
+            worst = worst.max((s - ws).abs()).max((c - wc).abs());
+        }
+        eprintln!("sin_cos_quadrant vs f64::sin_cos on [−π/2, π/2]: ≤ {worst:.2e}");
+        assert!(worst < 4e-16, "{worst:e}");
+        assert_eq!(sin_cos_quadrant(2.0), 2f64.sin_cos());
+        assert!(sin_cos_quadrant(f64::NAN).0.is_nan());
+    }
+
+    #[test]
+    fn exp_fast_is_within_its_bound() {
+        let mut worst: f64 = 0.0;
+        for k in -1_400_000..=1_400_000 {
+            let x = k as f64 * 5.0e-4 + 1.3e-7;
+            worst = worst.max((exp_fast(x) / x.exp() - 1.0).abs());
+        }
+        for x in [-707.9, -1e-300, 0.0, 1e-300, 708.9] {
+            worst = worst.max((exp_fast(x) / x.exp() - 1.0).abs());
+        }
+        eprintln!("exp_fast vs f64::exp on [−700, 700]: relative error ≤ {worst:.2e}");
+        for k in 0..=3700 {
+            let x = k as f64 * 1e-2;
+            let want = normal_pdf(x);
+            worst = worst.max((normal_pdf_fast(x) / want - 1.0).abs());
+        }
+        assert!(worst < 1e-14, "{worst:e}");
+        assert_eq!(exp_fast(-800.0), 0.0);
+        assert_eq!(exp_fast(800.0), f64::INFINITY);
+        assert_eq!(exp_fast(f64::NEG_INFINITY), 0.0);
+        assert!(exp_fast(f64::NAN).is_nan());
+    }
+
+    #[test]
+    fn i0_as_is_within_its_bound() {
+        // The bounds i0_as's and i0_scaled_as's documentation states, against the series
+        // below 20 and the asymptotic expansion above, over every argument M meets.
+        let (mut small, mut large): (f64, f64) = (0.0, 0.0);
+        for k in 0..=3750 {
+            let x = k as f64 * 1e-3;
+            small = small.max((i0_as(x) / i0_series(x) - 1.0).abs());
+        }
+        for k in 0..=200_000 {
+            let x = I0_AS_SPLIT * (1.0 + k as f64 * 1e-3).powi(3);
+            let want = if x < I0_SERIES_MAX {
+                i0_series(x) * (-x).exp()
+            } else {
+                i0_scaled_asymptotic(x)
+            };
+            large = large.max((i0_scaled_as(x) / want - 1.0).abs());
+        }
+        eprintln!("A&S 9.8.1 vs the series: {small:.2e}; 9.8.2 vs exact: {large:.2e}");
+        assert!(small < 2e-7 && large < 6e-7, "{small:e} {large:e}");
+        // And the split is continuous to the same order.
+        let x = I0_AS_SPLIT;
+        assert!((i0_as(x) * (-x).exp() / i0_scaled_as(x) - 1.0).abs() < 8e-7);
+    }
+
+    #[test]
     fn gauss_legendre_integrates_polynomials_exactly() {
         let rule = GaussLegendre::new(70);
         let exact = 2.0 / 139.0; // ∫ x^138 over [−1, 1]
@@ -339,6 +565,22 @@ mod tests {
         }
         assert!((erfc(1.0) - 0.157_299_207_050_285_13).abs() < 1e-15);
         assert!((erfc(0.3) - 0.671_373_240_540_872_8).abs() < 1e-15);
+    }
+
+    #[test]
+    fn normal_quantile_fast_is_within_its_bound() {
+        let mut worst: f64 = 0.0;
+        for k in 1..100_000 {
+            let p = k as f64 / 100_000.0;
+            for p in [p, p * 1e-6] {
+                let want = normal_quantile(p);
+                if want.abs() > 1e-3 {
+                    worst = worst.max((normal_quantile_fast(p) / want - 1.0).abs());
+                }
+            }
+        }
+        eprintln!("normal_quantile_fast vs normal_quantile: relative error ≤ {worst:.2e}");
+        assert!(worst < 1.2e-9, "{worst:e}");
     }
 
     #[test]

@@ -14,7 +14,7 @@ use crate::azimuthal::{AzimuthalScattering, Weighting, selection_from};
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::wrap_pi;
 use crate::special::{GaussLegendre, normal_pdf};
-use glam::DVec3;
+use glam::{DVec3, Vec4};
 use std::f64::consts::PI;
 
 const THETA_I_NODES: usize = 64;
@@ -31,10 +31,23 @@ const PANEL_NODES: usize = 16;
 pub struct AzimuthalTable {
     az: AzimuthalScattering,
     phi_nodes: usize,
-    /// [lobe][θ_i][θ_d][φ] → (r, g, b, selection).
-    blurred: Vec<[f32; 4]>,
+    /// [θ_i][θ_d][φ] → TT, TRT and TRRT, each (r, g, b, selection): one texel holds every
+    /// lobe, so a trilinear tap reads eight neighbouring cells once.
+    blurred: Vec<[Vec4; 3]>,
     /// [θ_i] → the p ≥ 4 remainder (r, g, b, selection).
-    rest: Vec<[f32; 4]>,
+    rest: Vec<Vec4>,
+}
+
+/// Where a lookup falls in the table: the lower node and the fraction toward the next along
+/// θ_i, θ_d (its η/η′) and |φ|. Found once per (ω_i, ω_o) and read by every lobe.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TablePoint {
+    i0: usize,
+    fi: f32,
+    d0: usize,
+    fd: f32,
+    f0: usize,
+    ff: f32,
 }
 
 impl AzimuthalTable {
@@ -46,10 +59,10 @@ impl AzimuthalTable {
         let phi_nodes =
             ((PI / (sigma_min / 3.0)).ceil() as usize).clamp(MIN_PHI_NODES, MAX_PHI_NODES);
         let slab = THETA_D_NODES * phi_nodes;
-        let mut blurred = vec![[0.0f32; 4]; BLURRED.len() * THETA_I_NODES * slab];
+        let mut blurred = vec![[Vec4::ZERO; 3]; THETA_I_NODES * slab];
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let mut lobe = vec![[0.0f32; 4]; THETA_I_NODES * slab];
         for (l, &p) in BLURRED.iter().enumerate() {
-            let lobe = &mut blurred[l * THETA_I_NODES * slab..(l + 1) * THETA_I_NODES * slab];
             let rows_per_thread = THETA_I_NODES.div_ceil(threads);
             std::thread::scope(|s| {
                 for (t, rows) in lobe.chunks_mut(rows_per_thread * slab).enumerate() {
@@ -60,13 +73,16 @@ impl AzimuthalTable {
                     });
                 }
             });
+            for (cell, v) in blurred.iter_mut().zip(&lobe) {
+                cell[l] = Vec4::from_array(*v);
+            }
         }
         let rest = (0..THETA_I_NODES)
             .map(|i| {
                 let theta_i = theta_i_at(i);
                 let a = az.eval(4, theta_i, -theta_i, 0.0, Weighting::Attenuation);
                 let sel = az.eval(4, theta_i, -theta_i, 0.0, Weighting::Selection).x;
-                [a.x as f32, a.y as f32, a.z as f32, sel as f32]
+                Vec4::new(a.x as f32, a.y as f32, a.z as f32, sel as f32)
             })
             .collect();
         Self {
@@ -92,9 +108,9 @@ impl AzimuthalTable {
     /// N_p(φ) weighted by attenuation and by selection together, from the same texels: what
     /// [`AzimuthalTable::eval_all`] gives for each weighting (the selection as its first channel).
     pub fn eval_all_both(&self, theta_i: f64, theta_d: f64, phi: f64) -> ([DVec3; 5], [DVec3; 5]) {
-        let texels = self.texels(theta_i, theta_d, phi);
-        let rgb = |v: [f32; 4]| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
-        let sel = |v: [f32; 4]| DVec3::splat(v[3] as f64);
+        let texels = self.taps(self.point(theta_i, self.eta_ratio(theta_d), phi));
+        let rgb = |v: Vec4| v.truncate().as_dvec3();
+        let sel = |v: Vec4| DVec3::splat(v.w as f64);
         (
             [
                 self.az
@@ -122,11 +138,11 @@ impl AzimuthalTable {
         phi: f64,
         weighting: Weighting,
     ) -> [DVec3; 5] {
-        let pick = |v: [f32; 4]| match weighting {
-            Weighting::Attenuation => DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64),
-            Weighting::Selection => DVec3::splat(v[3] as f64),
+        let pick = |v: Vec4| match weighting {
+            Weighting::Attenuation => v.truncate().as_dvec3(),
+            Weighting::Selection => DVec3::splat(v.w as f64),
         };
-        let [t1, t2, t3, rest] = self.texels(theta_i, theta_d, phi);
+        let [t1, t2, t3, rest] = self.taps(self.point(theta_i, self.eta_ratio(theta_d), phi));
         [
             self.az.eval(0, theta_i, theta_d, phi, weighting),
             pick(t1),
@@ -136,31 +152,60 @@ impl AzimuthalTable {
         ]
     }
 
-    /// The trilinear taps of the blurred lobes p = 1, 2, 3 (over θ_i, θ_d's η/η′, |φ|) and the
-    /// remainder's linear tap over θ_i, each [attenuation RGB, selection].
-    fn texels(&self, theta_i: f64, theta_d: f64, phi: f64) -> [[f32; 4]; 4] {
+    /// η/η′(θ_d), the table's θ_d coordinate, from θ_d.
+    fn eta_ratio(&self, theta_d: f64) -> f64 {
+        self.az.eta / eta_prime(self.az.eta, theta_d)
+    }
+
+    /// η/η′(θ_d) = η cos θ_d / √(η² − sin²θ_d) from cos(θ_o − θ_i) = cos 2θ_d alone, by the
+    /// half-angle identities (θ_d ∈ [−π/2, π/2], so cos θ_d ≥ 0): no trigonometry.
+    #[inline]
+    pub fn eta_ratio_from_cos_2d(&self, cos_2d: f64) -> f64 {
+        let eta = self.az.eta;
+        let cos2_d = (0.5 * (1.0 + cos_2d)).clamp(0.0, 1.0);
+        let sin2_d = 1.0 - cos2_d;
+        eta * cos2_d.sqrt() / (eta * eta - sin2_d).max(1e-300).sqrt()
+    }
+
+    /// The table coordinates of (θ_i, θ_d, φ), θ_d given by its η/η′ (see
+    /// [`AzimuthalTable::eta_ratio_from_cos_2d`]).
+    #[inline]
+    pub fn point(&self, theta_i: f64, eta_ratio: f64, phi: f64) -> TablePoint {
         let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
-        let (d0, fd) = locate(self.az.eta / eta_prime(self.az.eta, theta_d), THETA_D_NODES);
+        let (d0, fd) = locate(eta_ratio, THETA_D_NODES);
         let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
+        TablePoint {
+            i0,
+            fi,
+            d0,
+            fd,
+            f0,
+            ff,
+        }
+    }
+
+    /// The trilinear taps of the blurred lobes p = 1, 2, 3 (over θ_i, θ_d's η/η′, |φ|) and the
+    /// remainder's linear tap over θ_i, each (attenuation RGB, selection).
+    #[inline]
+    pub fn taps(&self, at: TablePoint) -> [Vec4; 4] {
         let slab = THETA_D_NODES * self.phi_nodes;
-        let blurred = |p: usize| {
-            let base = (p - 1) * THETA_I_NODES * slab;
-            let at = |i: usize, d: usize, f: usize| {
-                self.blurred[base + i * slab + d * self.phi_nodes + f]
-            };
-            let plane = |i: usize| {
-                let lo = lerp4(at(i, d0, f0), at(i, d0, f0 + 1), ff);
-                let hi = lerp4(at(i, d0 + 1, f0), at(i, d0 + 1, f0 + 1), ff);
-                lerp4(lo, hi, fd)
-            };
-            lerp4(plane(i0), plane(i0 + 1), fi)
+        let row = |i: usize, d: usize| i * slab + d * self.phi_nodes + at.f0;
+        let lerp3 = |a: &[Vec4; 3], b: &[Vec4; 3], t: f32| {
+            [
+                lerp4(a[0], b[0], t),
+                lerp4(a[1], b[1], t),
+                lerp4(a[2], b[2], t),
+            ]
         };
-        [
-            blurred(1),
-            blurred(2),
-            blurred(3),
-            lerp4(self.rest[i0], self.rest[i0 + 1], fi),
-        ]
+        let plane = |i: usize| {
+            let (lo, hi) = (row(i, at.d0), row(i, at.d0 + 1));
+            let lo = lerp3(&self.blurred[lo], &self.blurred[lo + 1], at.ff);
+            let hi = lerp3(&self.blurred[hi], &self.blurred[hi + 1], at.ff);
+            lerp3(&lo, &hi, at.fd)
+        };
+        let [tt, trt, trrt] = lerp3(&plane(at.i0), &plane(at.i0 + 1), at.fi);
+        let rest = lerp4(self.rest[at.i0], self.rest[at.i0 + 1], at.fi);
+        [tt, trt, trrt, rest]
     }
 }
 
@@ -248,13 +293,15 @@ fn theta_i_coord(theta_i: f64) -> f64 {
 
 /// The lower node and the fraction toward the next for a coordinate t ∈ [0, 1] on n nodes.
 fn locate(t: f64, n: usize) -> (usize, f32) {
-    let x = t * (n - 1) as f64;
-    let i = (x.floor() as usize).min(n - 2);
+    // t ≥ 0 (every coordinate is), so truncation is the floor; NaN truncates to node 0.
+    let x = t.max(0.0) * (n - 1) as f64;
+    let i = (x as usize).min(n - 2);
     (i, (x - i as f64) as f32)
 }
 
-fn lerp4(a: [f32; 4], b: [f32; 4], t: f32) -> [f32; 4] {
-    std::array::from_fn(|k| a[k] + (b[k] - a[k]) * t)
+#[inline]
+fn lerp4(a: Vec4, b: Vec4, t: f32) -> Vec4 {
+    a + (b - a) * t
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! The longitudinal lobes M_p: unit-integral Gaussians in θ_h.
 
-use crate::special::{normal_pdf, normal_quantile};
+use crate::special::{normal_pdf_fast, normal_quantile_fast};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// M_p: a unit-integral Gaussian in θ_h (Marschner 2003's practical model, Table 1).
@@ -13,7 +13,7 @@ pub(super) struct GaussianLobe {
 impl GaussianLobe {
     /// M_p(θ_h).
     pub(super) fn eval(&self, theta_h: f64) -> f64 {
-        normal_pdf((theta_h - self.alpha) / self.beta) / self.beta
+        normal_pdf_fast((theta_h - self.alpha) / self.beta) / self.beta
     }
 
     /// The density in θ_o of θ_o = 2θ_h − θ_i with θ_h drawn from M_p: M_p / 2. It is not
@@ -24,7 +24,7 @@ impl GaussianLobe {
 
     /// θ_o = 2θ_h − θ_i with θ_h from M_p by inversion, or `None` beyond ±π/2.
     pub(super) fn sample(&self, theta_i: f64, u: f64) -> Option<f64> {
-        let theta_h = self.alpha + self.beta * normal_quantile(u);
+        let theta_h = self.alpha + self.beta * normal_quantile_fast(u);
         let theta_o = 2.0 * theta_h - theta_i;
         (theta_o.abs() <= FRAC_PI_2).then_some(theta_o)
     }

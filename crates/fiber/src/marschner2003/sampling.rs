@@ -11,7 +11,7 @@ use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
 use crate::model::{FiberModel, FiberSample, per_steradian, select_and_remap};
-use crate::special::{GaussLegendre, normal_quantile};
+use crate::special::{GaussLegendre, normal_quantile_fast};
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -65,7 +65,7 @@ impl TrtProposal {
     }
 
     fn sample(&self, u_choice: f64, u: f64) -> f64 {
-        let offset = || normal_quantile(u.clamp(1e-16, 1.0 - 1e-16));
+        let offset = || normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16));
         match select_and_remap(&self.shares, u_choice).0 {
             0 => wrap_pi(self.phi_c + self.caustic_width * offset()),
             1 => wrap_pi(-self.phi_c + self.caustic_width * offset()),
