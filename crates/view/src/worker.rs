@@ -51,6 +51,8 @@ pub struct Frame {
     pub quality: Quality,
     pub image: Image,
     pub strands: Arc<StrandBuffer>,
+    /// Whether it re-ran the preparation (false when the kept one served).
+    pub prepared: bool,
     /// Seconds of the preparation it needed (0 when the kept one served).
     pub prepare_s: f64,
     /// Seconds of shading and resolve.
@@ -118,18 +120,19 @@ impl Slot {
         }
     }
 
-    /// Prepares `scene` unless the kept preparation serves; the seconds it took.
-    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> Result<f64, String> {
+    /// Prepares `scene` unless the kept preparation serves; the seconds it took, `None` when it
+    /// served.
+    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> Result<Option<f64>, String> {
         let key = PrepareKey::of(scene, revisions);
         if self.key.as_ref() == Some(&key) {
-            return Ok(0.0);
+            return Ok(None);
         }
         let start = Instant::now();
         self.key = None;
         self.shading.prepare(scene)?;
         self.strands = Arc::new(self.shading.strands());
         self.key = Some(key);
-        Ok(start.elapsed().as_secs_f64())
+        Ok(Some(start.elapsed().as_secs_f64()))
     }
 }
 
@@ -345,7 +348,8 @@ fn render(
         quality,
         image,
         strands: slot.strands.clone(),
-        prepare_s,
+        prepared: prepare_s.is_some(),
+        prepare_s: prepare_s.unwrap_or(0.0),
         shade_s: start.elapsed().as_secs_f64(),
         latency_s: request.issued.elapsed().as_secs_f64(),
         backend: slot.shading.backend(),

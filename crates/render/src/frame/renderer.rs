@@ -79,6 +79,16 @@ pub struct WorldLight {
     pub radiance: DVec3,
 }
 
+/// How many times a [`Renderer`] (and its clones, which share the caches) built each table that
+/// a hair-parameter edit may rebuild.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TableBuilds {
+    /// [`LobeTable`]s (η or the caustic parameters changed).
+    pub lobes: u64,
+    /// [`BackScatteringTables`] (a parameter other than absorption changed).
+    pub back_scattering: u64,
+}
+
 /// The renderer: its tables, built once, and the lobe table of the last hair parameters.
 #[derive(Clone, Debug)]
 pub struct Renderer {
@@ -119,6 +129,14 @@ impl Renderer {
         self.lobes.get_or_build((fiber.eta, trt_shape(fiber)), || {
             LobeTable::build(&self.tables, fiber)
         })
+    }
+
+    /// The builds so far of the tables kept across edits.
+    pub fn table_builds(&self) -> TableBuilds {
+        TableBuilds {
+            lobes: self.lobes.builds(),
+            back_scattering: self.back.builds(),
+        }
     }
 
     /// The back-scattering tables of `fiber`'s parameters but absorption, and `d_b`.
