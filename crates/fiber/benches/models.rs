@@ -1,7 +1,7 @@
 //! Criterion benchmarks of every fiber model's eval (all lobes, RGB), sample (with its weight
 //! S / pdf) and pdf on the inputs of pbrt-v4's `HairBxDF` figures in issue 15: uniformly random
 //! directions on the sphere, β = 0.3 (β_m = β_n = 0.3 for Chiang 2016, β_R = β/√2 for
-//! Marschner 2003 through [`Marschner2003::from_fiber`]), α = 2°, η = 1.55, σ_a from
+//! Marschner 2003 through [`Marschner2003::from_fiber`]), α = 2°, η = 1.55, μ_a from
 //! eumelanin 1.3 ([`mu_a_from_melanin`]), h = 0.3 for the near-field Chiang 2016 (pbrt's `f`,
 //! `Sample_f` and `PDF` take the offset too). After the runs it prints the issue's table,
 //! criterion's medians beside pbrt-v4's figures and the issue's aims.

@@ -2,7 +2,7 @@
 //! that leaves after p internal segments, with the exact Fresnel factor at the 3D incidence
 //! angle and Beer–Lambert absorption along the refracted chord (d'Eon et al. 2011).
 
-use crate::bravais::{cos_theta_t, eta_perp, gamma_t, segment_transmittance};
+use crate::bravais::{cos_theta_t, eta_prime, gamma_t, segment_transmittance};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::LobeValues;
 use glam::DVec3;
@@ -17,7 +17,7 @@ pub fn attenuation(theta_i: f64, h: f64, eta: f64, mu_a: DVec3) -> LobeValues {
     let h = h.clamp(-1.0, 1.0);
     let cos_gamma_i = (1.0 - h * h).max(0.0).sqrt();
     let f = fresnel_dielectric(theta_i.cos() * cos_gamma_i, eta);
-    let gt = gamma_t(h, eta_perp(eta, theta_i));
+    let gt = gamma_t(h, eta_prime(eta, theta_i));
     let ct = cos_theta_t(eta, theta_i);
     let t = DVec3::new(
         segment_transmittance(mu_a.x, gt, ct),

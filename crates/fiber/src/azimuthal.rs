@@ -8,7 +8,7 @@
 //! β = 0.3); this rule by 3·10⁻¹⁴ (test `gamma_panels_converge_where_a_fixed_rule_in_h_rings`).
 
 use crate::attenuation::attenuation;
-use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
 use crate::special::{GaussLegendre, normal_pdf};
@@ -169,7 +169,7 @@ impl AzimuthalScattering {
         weighting: Weighting,
     ) -> DVec3 {
         let v = self.v_n[p];
-        let eta_p = eta_perp(self.eta, theta_d);
+        let eta_p = eta_prime(self.eta, theta_d);
         let rule = GaussLegendre::cached(PANEL_NODES);
         let panels = self.panel_count(p, eta_p);
         let width = PI / panels as f64;
@@ -318,7 +318,7 @@ mod tests {
         for (beta, bound_ours, bound_fixed) in [(0.02, 1e-6, 0.1), (0.3, 1e-6, 0.0)] {
             let az = AzimuthalScattering::new(1.55, beta, DVec3::new(0.2, 0.4, 0.8));
             let (theta, p) = (0.3, 1);
-            let eta_p = eta_perp(az.eta, -theta);
+            let eta_p = eta_prime(az.eta, -theta);
             let fixed = GaussLegendre::new(70);
             let reference_rule = GaussLegendre::cached(16);
             let (mut worst_ours, mut worst_fixed, mut peak) = (0.0f64, 0.0f64, 0.0f64);

@@ -4,13 +4,13 @@
 use std::f64::consts::PI;
 
 /// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
-pub fn eta_perp(eta: f64, theta: f64) -> f64 {
+pub fn eta_prime(eta: f64, theta: f64) -> f64 {
     let (s, c) = theta.sin_cos();
     (eta * eta - s * s).max(0.0).sqrt() / c.abs().max(1e-12)
 }
 
 /// The second Bravais index for the parallel polarisation, η″ = η² cos θ / √(η² − sin²θ).
-pub fn eta_par(eta: f64, theta: f64) -> f64 {
+pub fn eta_double_prime(eta: f64, theta: f64) -> f64 {
     let (s, c) = theta.sin_cos();
     eta * eta * c.abs() / (eta * eta - s * s).max(1e-300).sqrt()
 }
@@ -45,11 +45,13 @@ mod tests {
 
     #[test]
     fn indices_reduce_to_eta_at_normal_incidence_and_grow_with_inclination() {
-        assert_eq!(eta_perp(1.55, 0.0), 1.55);
-        assert!((eta_par(1.55, 0.0) - 1.55).abs() < 1e-15);
-        assert!(eta_perp(1.55, 1.0) > 1.55 && eta_par(1.55, 1.0) < 1.55);
+        assert_eq!(eta_prime(1.55, 0.0), 1.55);
+        assert!((eta_double_prime(1.55, 0.0) - 1.55).abs() < 1e-15);
+        assert!(eta_prime(1.55, 1.0) > 1.55 && eta_double_prime(1.55, 1.0) < 1.55);
         // η′ η″ = η² (Marschner et al. 2003's two indices are reciprocal through η²).
-        assert!((eta_perp(1.55, 0.7) * eta_par(1.55, 0.7) - 1.55f64.powi(2)).abs() < 1e-12);
+        assert!(
+            (eta_prime(1.55, 0.7) * eta_double_prime(1.55, 0.7) - 1.55f64.powi(2)).abs() < 1e-12
+        );
     }
 
     #[test]

@@ -44,7 +44,7 @@
 //! with σ_a = 0 they are exactly 1. The far-field [`FiberModel::sample`] first draws h uniformly.
 
 use crate::attenuation::attenuation;
-use crate::bravais::{eta_perp, gamma_t};
+use crate::bravais::{eta_prime, gamma_t};
 use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
@@ -147,7 +147,7 @@ impl Chiang2016 {
     fn offset(&self, theta_i: f64, h: f64) -> Offset {
         let h = h.clamp(-1.0, 1.0);
         let att = attenuation(theta_i, h, self.params.eta, self.params.mu_a);
-        let eta_prime = eta_perp(self.params.eta, theta_i);
+        let eta_prime = eta_prime(self.params.eta, theta_i);
         Offset {
             a: [att.0[0], att.0[1], att.0[2], att.0[3] + att.0[4]],
             gamma_i: h.asin(),

@@ -16,7 +16,7 @@
 //! (d'Eon et al. 2014 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
-use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
@@ -189,7 +189,7 @@ pub(crate) fn sample_phi(az: &AzimuthalScattering, p: usize, h: f64, theta_d: f6
         4 => 2.0 * PI * u - PI,
         _ => {
             let offset = az.v_n[p].sqrt() * normal_quantile(u.clamp(1e-16, 1.0 - 1e-16));
-            azimuthal_deflection(p as u32, h, eta_perp(az.eta, theta_d)) + offset
+            azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + offset
         }
     }
 }

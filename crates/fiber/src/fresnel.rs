@@ -17,10 +17,10 @@ pub fn fresnel_dielectric(cos_i: f64, eta: f64) -> f64 {
 
 /// Marschner 2003's oblique Fresnel factor: the projected 2D problem at angle `gamma` with the
 /// perpendicular component from η′ and the parallel component from η″ (Marschner et al. 2003 "Definition
-/// of F"). `eta_perp`, `eta_par` below 1 describe light leaving the fiber.
-pub fn fresnel_oblique(eta_perp: f64, eta_par: f64, gamma: f64) -> f64 {
-    let s = polarised_reflectance(eta_perp, gamma, Polarisation::Perpendicular);
-    let p = polarised_reflectance(eta_par, gamma, Polarisation::Parallel);
+/// of F"). `eta_prime`, `eta_double_prime` below 1 describe light leaving the fiber.
+pub fn fresnel_oblique(eta_prime: f64, eta_double_prime: f64, gamma: f64) -> f64 {
+    let s = polarised_reflectance(eta_prime, gamma, Polarisation::Perpendicular);
+    let p = polarised_reflectance(eta_double_prime, gamma, Polarisation::Parallel);
     0.5 * (s + p)
 }
 

@@ -11,7 +11,7 @@
 //! quadrature is measured in the tests below and in BENCHMARKS.md.
 
 use crate::azimuthal::{AzimuthalScattering, Weighting, selection_from};
-use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::wrap_pi;
 use crate::special::{GaussLegendre, normal_pdf};
 use glam::DVec3;
@@ -140,7 +140,7 @@ impl AzimuthalTable {
     /// remainder's linear tap over θ_i, each [attenuation RGB, selection].
     fn texels(&self, theta_i: f64, theta_d: f64, phi: f64) -> [[f32; 4]; 4] {
         let (i0, fi) = locate(theta_i_coord(theta_i), THETA_I_NODES);
-        let (d0, fd) = locate(self.az.eta / eta_perp(self.az.eta, theta_d), THETA_D_NODES);
+        let (d0, fd) = locate(self.az.eta / eta_prime(self.az.eta, theta_d), THETA_D_NODES);
         let (f0, ff) = locate(wrap_pi(phi).abs() / PI, self.phi_nodes);
         let slab = THETA_D_NODES * self.phi_nodes;
         let blurred = |p: usize| {

@@ -1,4 +1,4 @@
-//! White furnace (issue 2): with σ_a = 0, α = 0 and η = 1.55, d'Eon 2011 integrates to 1 within
+//! White furnace (issue 2): with μ_a = 0, α = 0 and η = 1.55, d'Eon 2011 integrates to 1 within
 //! 0.5 % over θ_i ∈ {0, 0.5, 1.0, 1.4} × β ∈ {0.01, 0.04, 0.15, 0.3}, and so does the
 //! non-separable model except at rough grazing settings.
 //!

@@ -104,7 +104,7 @@ fn model_bins(az: &AzimuthalScattering, p: usize, theta_i: f64) -> [f64; BINS] {
 
 /// φ bins holding a TRT caustic (where dΦ(2, h)/dh = 0) and their neighbours.
 fn near_trt_caustic(bin: usize, theta_i: f64, eta: f64) -> bool {
-    let eta_p = cuticle_fiber::bravais::eta_perp(eta, theta_i);
+    let eta_p = cuticle_fiber::bravais::eta_prime(eta, theta_i);
     if eta_p >= 2.0 {
         return false;
     }

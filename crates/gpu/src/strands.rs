@@ -3,7 +3,7 @@
 //! rewritten for a few strands by [`GpuRenderer::update_strands`](crate::GpuRenderer::update_strands)
 //! without touching the groom.
 //!
-//! A strand carries its absorption σ_a (RGB, per unit radius, as `HairParams::fiber` gives it);
+//! A strand carries its absorption μ_a (RGB, per unit radius, as `HairParams::fiber` gives it);
 //! the CPU renderer takes every other parameter from the scene's global set (scene/hair.rs), and
 //! so does this one.
 
@@ -15,17 +15,14 @@ use cuticle_render::tables::absorption_axis::SIGMA_MAX;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct StrandParams {
-    /// σ_a per unit radius, RGB.
-    pub sigma_a: [f32; 3],
+    /// μ_a per unit radius, RGB.
+    pub mu_a: [f32; 3],
     pub _spare: f32,
 }
 
 impl StrandParams {
-    pub fn new(sigma_a: [f32; 3]) -> Self {
-        Self {
-            sigma_a,
-            _spare: 0.0,
-        }
+    pub fn new(mu_a: [f32; 3]) -> Self {
+        Self { mu_a, _spare: 0.0 }
     }
 }
 
@@ -38,7 +35,7 @@ pub enum StrandError {
         end: usize,
         count: usize,
     },
-    #[error("strand {strand}: sigma_a {value} is outside [0, {max}]")]
+    #[error("strand {strand}: mu_a {value} is outside [0, {max}]")]
     BadAbsorption { strand: usize, value: f32, max: f64 },
 }
 
@@ -68,7 +65,7 @@ pub fn derive(scene: &Scene) -> Vec<StrandParams> {
         .collect()
 }
 
-/// Checks an update of strands `first..first + params.len()` of `count`: in range, σ_a finite
+/// Checks an update of strands `first..first + params.len()` of `count`: in range, μ_a finite
 /// and within the tables' range (the same range `HairParams::validate` checks).
 pub fn check(first: usize, params: &[StrandParams], count: usize) -> Result<(), StrandError> {
     let end = first.saturating_add(params.len());
@@ -77,7 +74,7 @@ pub fn check(first: usize, params: &[StrandParams], count: usize) -> Result<(), 
     }
     for (k, p) in params.iter().enumerate() {
         if let Some(&value) = p
-            .sigma_a
+            .mu_a
             .iter()
             .find(|v| !(v.is_finite() && (0.0..=SIGMA_MAX as f32).contains(*v)))
         {

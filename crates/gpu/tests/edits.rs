@@ -140,7 +140,7 @@ fn updating_one_strand_changes_only_its_pixels() {
     );
     // The CPU renderer with the strand's appearance painted the same way agrees.
     let mut painted = scene.clone();
-    painted.groom.appearance_mut()[s].absorption = Some(Absorption::SigmaA(paint));
+    painted.groom.appearance_mut()[s].absorption = Some(Absorption::MuA(paint));
     let (want, _, _) = cpu().render(&painted);
     let e = relative_rmse(&after, &want, &hair_pixels(&vis));
     assert!(e < 5e-3, "painted strand against the CPU: {e}");

@@ -1,6 +1,6 @@
 //! Per-strand appearance: what a fiber scattering model needs to shade one strand.
 //!
-//! Units follow docs/conventions.md §5: σ_a per unit fiber radius, β (longitudinal roughness) unitless,
+//! Units follow docs/conventions.md §5: μ_a per unit fiber radius, β (longitudinal roughness) unitless,
 //! the scale tilt α in degrees, η the index of refraction of the fiber.
 
 use serde::{Deserialize, Serialize};
@@ -9,9 +9,10 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Absorption {
-    /// Absorption coefficient σ_a per unit fiber radius, RGB (the CLI's `--mu-a`).
-    SigmaA([f32; 3]),
-    /// Pigment concentrations, turned into σ_a by the fiber crate's melanin model.
+    /// Absorption coefficient μ_a per unit fiber radius, RGB (the CLI's `--mu-a`).
+    #[serde(rename = "mu_a", alias = "sigma_a")]
+    MuA([f32; 3]),
+    /// Pigment concentrations, turned into μ_a by the fiber crate's melanin model.
     Melanin { eumelanin: f32, pheomelanin: f32 },
 }
 
@@ -47,18 +48,18 @@ impl Appearance {
         }
     }
 
-    /// This appearance with an explicit σ_a (per unit radius, RGB).
-    pub fn with_sigma_a(self, sigma_a: [f32; 3]) -> Self {
+    /// This appearance with an explicit μ_a (per unit radius, RGB).
+    pub fn with_mu_a(self, mu_a: [f32; 3]) -> Self {
         Self {
-            absorption: Some(Absorption::SigmaA(sigma_a)),
+            absorption: Some(Absorption::MuA(mu_a)),
             ..self
         }
     }
 
-    /// This appearance with its absorption (σ_a or both concentrations) multiplied by `factor`.
+    /// This appearance with its absorption (μ_a or both concentrations) multiplied by `factor`.
     pub fn with_absorption_scaled(self, factor: f32) -> Self {
         let absorption = self.absorption.map(|a| match a {
-            Absorption::SigmaA(s) => Absorption::SigmaA(s.map(|c| c * factor)),
+            Absorption::MuA(s) => Absorption::MuA(s.map(|c| c * factor)),
             Absorption::Melanin {
                 eumelanin,
                 pheomelanin,
@@ -70,12 +71,12 @@ impl Appearance {
         Self { absorption, ..self }
     }
 
-    /// Whether every number is finite and in its physical range (β > 0, η > 1, σ_a and
+    /// Whether every number is finite and in its physical range (β > 0, η > 1, μ_a and
     /// concentrations ≥ 0).
     pub fn is_physical(&self) -> bool {
         let absorption_ok = match self.absorption {
             None => true,
-            Some(Absorption::SigmaA(s)) => s.iter().all(|c| c.is_finite() && *c >= 0.0),
+            Some(Absorption::MuA(s)) => s.iter().all(|c| c.is_finite() && *c >= 0.0),
             Some(Absorption::Melanin {
                 eumelanin,
                 pheomelanin,
@@ -118,9 +119,9 @@ mod tests {
         };
         assert_eq!(melanin.absorption, Some(expected));
         let sigma = Appearance::default()
-            .with_sigma_a([0.1, 0.2, 0.4])
+            .with_mu_a([0.1, 0.2, 0.4])
             .with_absorption_scaled(0.5);
-        assert_eq!(sigma.absorption, Some(Absorption::SigmaA([0.05, 0.1, 0.2])));
+        assert_eq!(sigma.absorption, Some(Absorption::MuA([0.05, 0.1, 0.2])));
         assert_eq!(
             Appearance::default().with_absorption_scaled(3.0).absorption,
             None
@@ -146,7 +147,7 @@ mod tests {
         );
         assert!(
             !Appearance::default()
-                .with_sigma_a([0.1, -1.0, 0.0])
+                .with_mu_a([0.1, -1.0, 0.0])
                 .is_physical()
         );
         assert!(

@@ -10,7 +10,7 @@
 //!   hairline is high on the +y side), so the person's right is +x. A camera in front of the
 //!   face sits on the +y axis looking along −y, with −x to its right.
 //! - Thickness is the fiber's diameter at a point.
-//! - Appearance units follow docs/conventions.md §5 (σ_a per unit radius, α in degrees).
+//! - Appearance units follow docs/conventions.md §5 (μ_a per unit radius, α in degrees).
 
 pub mod appearance;
 pub mod error;

@@ -5,12 +5,12 @@
 //!
 //! ```json
 //! { "format": "cuticle-strand-absorption", "version": 1, "strands": 3,
-//!   "absorption": [ {"sigma_a": [0.3, 0.5, 0.9]},
+//!   "absorption": [ {"mu_a": [0.3, 0.5, 0.9]},
 //!                   {"melanin": {"eumelanin": 1.3, "pheomelanin": 0.2}},
 //!                   null ] }
 //! ```
 //!
-//! One entry per strand, in the groom's strand order: σ_a per unit radius (RGB), melanin
+//! One entry per strand, in the groom's strand order: μ_a per unit radius (RGB), melanin
 //! concentrations, or `null` for a strand that keeps the renderer's default. Numbers are f32 and
 //! written in their shortest exact form, so a file read back gives the same bits.
 
@@ -101,7 +101,7 @@ pub fn from_bytes(
 
 fn physical(a: Absorption) -> bool {
     let values: &[f32] = match &a {
-        Absorption::SigmaA(s) => s,
+        Absorption::MuA(s) => s,
         Absorption::Melanin {
             eumelanin,
             pheomelanin,
@@ -142,17 +142,31 @@ mod tests {
         generate(&params).unwrap()
     }
 
-    /// Written and read back, every strand's absorption keeps its bits, a painted σ_a and an
+    /// Written and read back, every strand's absorption keeps its bits, a painted μ_a and an
     /// unset strand included.
     #[test]
     fn round_trip_is_exact() {
         let mut g = groom();
-        g.appearance_mut()[3].absorption = Some(Absorption::SigmaA([0.1f32 / 3.0, 0.7, 1e-7]));
+        g.appearance_mut()[3].absorption = Some(Absorption::MuA([0.1f32 / 3.0, 0.7, 1e-7]));
         g.appearance_mut()[5].absorption = None;
         let bytes = to_bytes(&g);
         let back = from_bytes(&bytes, g.strand_count()).unwrap();
         let want: Vec<_> = g.appearance().iter().map(|a| a.absorption).collect();
         assert_eq!(back, want);
+    }
+
+    /// Files written before absorption was named `mu_a` everywhere said `sigma_a`; they still
+    /// read, and a key that is neither is refused.
+    #[test]
+    fn the_old_key_sigma_a_still_reads() {
+        let old = r#"{"format":"cuticle-strand-absorption","version":1,"strands":2,"absorption":[{"sigma_a":[0.25,0.5,1]},null]}"#;
+        let back = from_bytes(old.as_bytes(), 2).unwrap();
+        assert_eq!(back, vec![Some(Absorption::MuA([0.25, 0.5, 1.0])), None]);
+        let other = old.replace("sigma_a", "sigma_b");
+        assert!(matches!(
+            from_bytes(other.as_bytes(), 2),
+            Err(StrandAbsorptionError::Json(_))
+        ));
     }
 
     #[test]
@@ -169,7 +183,7 @@ mod tests {
             from_bytes(other.as_bytes(), g.strand_count()),
             Err(StrandAbsorptionError::Format { .. })
         ));
-        let negative = r#"{"format":"cuticle-strand-absorption","version":1,"strands":1,"absorption":[{"sigma_a":[0.1,-1,0]}]}"#;
+        let negative = r#"{"format":"cuticle-strand-absorption","version":1,"strands":1,"absorption":[{"mu_a":[0.1,-1,0]}]}"#;
         assert!(matches!(
             from_bytes(negative.as_bytes(), 1),
             Err(StrandAbsorptionError::Unphysical { strand: 0, .. })

@@ -237,14 +237,14 @@ fn appearance_varies_between_strands_around_the_preset() {
 #[test]
 fn a_painter_can_change_a_strand() {
     let mut groom = generate(&small(Preset::Straight, 10, 1)).unwrap();
-    groom.appearance_mut()[3] = groom.appearance()[3].with_sigma_a([0.1, 0.2, 0.3]);
+    groom.appearance_mut()[3] = groom.appearance()[3].with_mu_a([0.1, 0.2, 0.3]);
     assert_eq!(
         groom.strand(3).appearance.absorption,
-        Some(Absorption::SigmaA([0.1, 0.2, 0.3]))
+        Some(Absorption::MuA([0.1, 0.2, 0.3]))
     );
     assert_ne!(
         groom.strand(4).appearance.absorption,
-        Some(Absorption::SigmaA([0.1, 0.2, 0.3]))
+        Some(Absorption::MuA([0.1, 0.2, 0.3]))
     );
 }
 

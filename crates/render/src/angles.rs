@@ -49,12 +49,12 @@ pub fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 
 /// η′ = √(η² − sin²θ_d)/cos θ_d (Xu et al. 2011 Table 1).
 pub fn eta_prime(eta: f64, theta_d: f64) -> f64 {
-    cuticle_fiber::bravais::eta_perp(eta, theta_d)
+    cuticle_fiber::bravais::eta_prime(eta, theta_d)
 }
 
-/// σ′_a = σ_a/√(1 − sin²θ_d/η²) (Xu et al. 2011 Table 1).
-pub fn sigma_prime(sigma_a: f64, eta: f64, theta_d: f64) -> f64 {
-    sigma_a / cuticle_fiber::bravais::cos_theta_t(eta, theta_d).max(1e-6)
+/// σ′_a = μ_a/√(1 − sin²θ_d/η²) (Xu et al. 2011 Table 1).
+pub fn sigma_prime(mu_a: f64, eta: f64, theta_d: f64) -> f64 {
+    mu_a / cuticle_fiber::bravais::cos_theta_t(eta, theta_d).max(1e-6)
 }
 
 /// Φ(p, h) = 2p asin(h/η′) − 2 asin h + pπ (Xu et al. 2011 eq. 8).

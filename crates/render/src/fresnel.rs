@@ -2,13 +2,17 @@
 //! 2003's oblique factor with Bravais' indices η′(η, θ_d) and η″(η, θ_d) at γ_i = asin h, the
 //! same factor the exact model uses, and Schlick's approximation for the R mode (eq. 13).
 
-use cuticle_fiber::bravais::{eta_par, eta_perp};
+use cuticle_fiber::bravais::{eta_double_prime, eta_prime};
 use cuticle_fiber::fresnel::fresnel_oblique;
 
 /// F(η, θ_d, h) with the projected indices.
 pub fn oblique(eta: f64, theta_d: f64, h: f64) -> f64 {
     let gamma = h.clamp(-1.0, 1.0).asin();
-    fresnel_oblique(eta_perp(eta, theta_d), eta_par(eta, theta_d), gamma)
+    fresnel_oblique(
+        eta_prime(eta, theta_d),
+        eta_double_prime(eta, theta_d),
+        gamma,
+    )
 }
 
 /// F₀ = (1 − η)²/(1 + η)², the reflectance at normal incidence (Xu et al. 2011 §4.2.1).

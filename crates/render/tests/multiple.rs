@@ -57,8 +57,8 @@ fn total(img: &Image) -> f64 {
     img.pixels.iter().map(|p| p.element_sum()).sum()
 }
 
-/// Multiple scattering adds energy (never removes any), and a lighter fiber (σ_a = 0.1) gains
-/// more, relative to its single scattering, than a darker one (σ_a = 1.5).
+/// Multiple scattering adds energy (never removes any), and a lighter fiber (μ_a = 0.1) gains
+/// more, relative to its single scattering, than a darker one (μ_a = 1.5).
 #[test]
 fn multiple_scattering_adds_more_to_lighter_hair() {
     let gain = |mu: f64| {
@@ -159,7 +159,7 @@ fn single_and_multiple(
 
 /// The brute force's multiple scattering (exact functions, directional lights: 6 · 6² here)
 /// adds energy at every point, never removes any, and adds more, relative to single
-/// scattering, to lighter hair (measured gains 0.116 for σ_a = 0.1, 0.0019 for σ_a = 1.5).
+/// scattering, to lighter hair (measured gains 0.116 for μ_a = 0.1, 0.0019 for μ_a = 1.5).
 #[test]
 fn brute_force_multiple_scattering_adds_more_to_lighter_hair() {
     let r = renderer();
@@ -180,7 +180,7 @@ fn brute_force_multiple_scattering_adds_more_to_lighter_hair() {
 }
 
 /// Multiple scattering alone, SRBF against brute force (6 · 10² lights), on light hair
-/// (σ_a = 0.1) with shadows of `density`, under one light: (relative RMSE over visible
+/// (μ_a = 0.1) with shadows of `density`, under one light: (relative RMSE over visible
 /// points, SRBF total / brute total).
 fn srbf_against_brute_multiple(light: SrbfLight, density: f64) -> (f64, f64) {
     let r = renderer();

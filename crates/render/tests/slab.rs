@@ -427,7 +427,7 @@ fn check_direct(traced: &Traced, b: &Rendered) {
     );
 }
 
-/// Light fibers (σ_a = 0.1, 0.2, 0.4): dual scattering's whole multiple scattering, brute
+/// Light fibers (μ_a = 0.1, 0.2, 0.4): dual scattering's whole multiple scattering, brute
 /// force and SRBF, within 20 % of the path trace per channel, lit from the camera's side and
 /// from behind the slab (measured 0.94–0.97 and 1.01–1.18 for the brute force, 0.96–0.99 and
 /// 0.95–1.15 for SRBF). Before the Poisson T_f and f_back's factor 2 it was 0.29–0.55 in
@@ -455,10 +455,10 @@ fn light_fibers_multiple_scattering_matches_a_path_trace() {
     }
 }
 
-/// Dark fibers (σ_a = 1, 2, 4), where ā_f = 0.17, 0.06, 0.04 lies below e^{−1} and the old
+/// Dark fibers (μ_a = 1, 2, 4), where ā_f = 0.17, 0.06, 0.04 lies below e^{−1} and the old
 /// T_f = ā_f^n fell below T̃ = e^{−n}, leaving no global term at all: now the global term of
-/// the light crossing the slab is within 20 % of the trace's forward-only paths for σ_a = 1
-/// and 2 (measured 0.93 and 1.12; σ_a = 4 carries 10⁻⁵ of the light and is left out), and
+/// the light crossing the slab is within 20 % of the trace's forward-only paths for μ_a = 1
+/// and 2 (measured 0.93 and 1.12; μ_a = 4 carries 10⁻⁵ of the light and is left out), and
 /// the whole multiple scattering in front is within [0.4, 1.2] of the trace's (measured
 /// 0.50–0.75): Zinke's Ā_b ∝ ā_f² leaves out most of what dark neighbours back-scatter.
 #[test]
@@ -487,7 +487,7 @@ fn dark_fibers_global_term_matches_a_path_trace() {
     within(s.multiple, traced.multiple(), (0.4, 1.2), "srbf, front-lit");
 }
 
-/// The default brown fiber (σ_a = 0.3, 0.5, 0.9), lit from the camera's side: red and green
+/// The default brown fiber (μ_a = 0.3, 0.5, 0.9), lit from the camera's side: red and green
 /// within 20 % (measured 0.95, 0.88 brute; 0.97, 0.91 SRBF), blue within 40 % (0.67, 0.70);
 /// before the fixes 0.07–0.49.
 #[test]

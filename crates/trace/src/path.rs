@@ -18,7 +18,7 @@
 //! - a BCSDF sample ω_i drawn with density p_b carries the weight S(ω_o, ω_i) / p_b, the
 //!   sample's own `weight`;
 //! - an environment sample ω_i of density p_e carries S(ω_o, ω_i) L_i(ω_i) / p_e;
-//! - the white furnace (L_i ≡ 1, σ_a = 0) gives L_o = ∫ S(ω_o, ω_i) dω_i = 1 for any
+//! - the white furnace (L_i ≡ 1, μ_a = 0) gives L_o = ∫ S(ω_o, ω_i) dω_i = 1 for any
 //!   energy-conserving model, after any number of bounces: the hair disappears.
 //!
 //! For Marschner 2003, which is reciprocal (`reciprocal_in_marschners_units` in the fiber

@@ -1,4 +1,4 @@
-//! The white furnace of a groom (issue 12): σ_a = 0, an energy-conserving model, a uniform white
+//! The white furnace of a groom (issue 12): μ_a = 0, an energy-conserving model, a uniform white
 //! environment of radiance 1. Every pixel — hair or not — is 1 within its Monte Carlo error,
 //! for slabs 1, 4 and 12 layers deep: the hair disappears. Any pdf, weight or frame error, a
 //! missing cos θ ratio or double-counted MIS shows as a pixel off 1.

@@ -2,11 +2,11 @@
 //! built. Absorption comes in three layers, the first set of which a strand shows:
 //! its paint ([`Look::paint`]), the absorption set for all strands ([`Look::all_strands`]), and
 //! the groom's own (melanin per strand for the procedural grooms). The scene handed to the
-//! renderer carries the result in each strand's appearance, and no global σ_a override.
+//! renderer carries the result in each strand's appearance, and no global μ_a override.
 
 use cuticle_groom::{Absorption, Groom};
 use cuticle_light::{EnvMap, SrbfLight};
-use cuticle_render::scene::hair::sigma_a_of;
+use cuticle_render::scene::hair::mu_a_of;
 use cuticle_render::{Scene, SceneSpec};
 use glam::DVec3;
 use std::sync::Arc;
@@ -38,7 +38,7 @@ pub struct Look {
 }
 
 impl Look {
-    /// The look of a loaded scene: its global σ_a override, if any, becomes the absorption of
+    /// The look of a loaded scene: its global μ_a override, if any, becomes the absorption of
     /// all strands, and nothing is painted.
     pub fn from_scene(mut scene: Scene) -> Self {
         let all_strands = scene
@@ -46,7 +46,7 @@ impl Look {
             .hair
             .mu_a
             .take()
-            .map(|m| Absorption::SigmaA([m[0] as f32, m[1] as f32, m[2] as f32]));
+            .map(|m| Absorption::MuA([m[0] as f32, m[1] as f32, m[2] as f32]));
         scene.spec.camera = Some(scene.camera);
         let paint = vec![None; scene.groom.strand_count()];
         Self {
@@ -67,8 +67,8 @@ impl Look {
             .or_else(|| self.groom.appearance().get(s).and_then(|a| a.absorption))
     }
 
-    /// σ_a per unit radius of strand `s` as the renderer reads it.
-    pub fn sigma_a(&self, s: usize) -> DVec3 {
+    /// μ_a per unit radius of strand `s` as the renderer reads it.
+    pub fn mu_a(&self, s: usize) -> DVec3 {
         let a = self
             .paint
             .get(s)
@@ -76,7 +76,7 @@ impl Look {
             .flatten()
             .or(self.base_absorption(s));
         match a {
-            Some(a) => sigma_a_of(a),
+            Some(a) => mu_a_of(a),
             None => DVec3::from_array(self.spec.hair.default_mu_a),
         }
     }
@@ -103,16 +103,14 @@ impl Look {
     }
 }
 
-/// An absorption given as σ_a.
-pub fn sigma_a(s: DVec3) -> Absorption {
-    Absorption::SigmaA([s.x as f32, s.y as f32, s.z as f32])
+/// An absorption given as μ_a.
+pub fn mu_a(s: DVec3) -> Absorption {
+    Absorption::MuA([s.x as f32, s.y as f32, s.z as f32])
 }
 
-/// σ_a of what an absorption editor shows (the default σ_a for the strands' own).
-pub fn sigma_a_of_edit(edit: &crate::app::AbsorptionEdit) -> DVec3 {
-    edit.absorption()
-        .map(sigma_a_of)
-        .unwrap_or(DVec3::from_array(
-            cuticle_render::HairParams::default().default_mu_a,
-        ))
+/// μ_a of what an absorption editor shows (the default μ_a for the strands' own).
+pub fn mu_a_of_edit(edit: &crate::app::AbsorptionEdit) -> DVec3 {
+    edit.absorption().map(mu_a_of).unwrap_or(DVec3::from_array(
+        cuticle_render::HairParams::default().default_mu_a,
+    ))
 }

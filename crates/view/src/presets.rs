@@ -57,13 +57,13 @@ pub fn by_name(name: &str) -> Option<Preset> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cuticle_render::scene::hair::sigma_a_of;
+    use cuticle_render::scene::hair::mu_a_of;
 
     /// From black to white each preset absorbs less in every channel, and auburn is the
     /// reddest (its blue absorbed most relative to red).
     #[test]
     fn presets_run_dark_to_light_and_auburn_is_red() {
-        let s = |n| sigma_a_of(by_name(n).unwrap().absorption());
+        let s = |n| mu_a_of(by_name(n).unwrap().absorption());
         let order = ["black", "brown", "blond", "white"];
         for pair in order.windows(2) {
             let (a, b) = (s(pair[0]), s(pair[1]));

@@ -130,7 +130,7 @@ fn each_edit_redoes_only_what_it_changes() {
     assert_ne!(full(&absorbed), full(&first), "the absorption edit shows");
 
     for s in 0..look.paint.len() / 3 {
-        look.paint[s] = Some(Absorption::SigmaA([0.1, 2.0, 4.0]));
+        look.paint[s] = Some(Absorption::MuA([0.1, 2.0, 4.0]));
     }
     let (painted, built) = bench.frames(&look);
     assert_eq!((prepared(&painted), built), (false, NONE), "a paint stroke");

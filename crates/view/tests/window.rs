@@ -526,14 +526,14 @@ fn screenshot_writes_png_and_exr() {
     }
 }
 
-/// Bad input — a NaN typed as σ_a, a missing and a corrupt `.hair`, a missing and a corrupt
+/// Bad input — a NaN typed as μ_a, a missing and a corrupt `.hair`, a missing and a corrupt
 /// map — shows an error in the window and leaves the scene and its image as they were.
 #[test]
 fn bad_input_shows_an_error_and_keeps_the_scene() {
     let dir = tempfile::tempdir().unwrap();
     let mut h = open(spec(), dir.path());
-    // σ_a typed for all strands: first the field, at the default σ_a.
-    click(&mut h, "σ_a");
+    // μ_a typed for all strands: first the field, at the default μ_a.
+    click(&mut h, "μ_a");
     h.step();
     settle(&mut h);
     let (before, _) = frame(&h);
@@ -545,7 +545,7 @@ fn bad_input_shows_an_error_and_keeps_the_scene() {
     std::fs::write(&garbage, b"HAIR this is not a hair file at all").unwrap();
     type Act<'a> = &'a dyn Fn(&mut Harness<'static, Option<ViewApp>>);
     let cases: [(&str, &str, Act); 5] = [
-        ("NaN σ_a", "mu_a must be a finite number", &|h| {
+        ("NaN μ_a", "mu_a must be a finite number", &|h| {
             app_mut(h).controls.sigma_text = "NaN".into();
             h.get_by_label_contains("r, g, b").focus();
             h.step();

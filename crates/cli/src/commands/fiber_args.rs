@@ -38,7 +38,7 @@ impl ModelName {
     }
 }
 
-/// The absorption σ_a the flags give: `--mu-a`, else melanin (`--eumelanin`, `--pheomelanin`,
+/// The absorption μ_a the flags give: `--mu-a`, else melanin (`--eumelanin`, `--pheomelanin`,
 /// each checked), else `default`.
 pub fn absorption(
     mu_a: Option<[f64; 3]>,

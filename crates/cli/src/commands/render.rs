@@ -79,7 +79,7 @@ pub struct SceneArgs {
     /// Longitudinal width β_R, degrees.
     #[arg(long, allow_negative_numbers = true)]
     beta_r_deg: Option<f64>,
-    /// Absorption σ_a per unit radius for every strand: one value or r,g,b.
+    /// Absorption μ_a per unit radius for every strand: one value or r,g,b.
     #[arg(long, allow_negative_numbers = true)]
     mu_a: Option<String>,
     /// Eccentricity a.

@@ -80,7 +80,7 @@ impl PathArgs {
     }
 
     /// The fiber parameters of the non-Marschner models: η from the scene, absorption from
-    /// the scene's `--mu-a`, else melanin, else the scene's default σ_a.
+    /// the scene's `--mu-a`, else melanin, else the scene's default μ_a.
     fn fiber(&self, spec: &SceneSpec, beta: f64) -> Result<FiberParams> {
         let hair = &spec.hair;
         let mu_a = absorption(

@@ -8,7 +8,7 @@ use cuticle_fiber::absorption::mu_a_from_melanin;
 /// One call's inputs: ω_i, ω_o and four uniform numbers for sampling.
 pub type Case = (FiberAngles, FiberAngles, [f64; 4]);
 
-/// η 1.55, β = 0.3, α = 2°, σ_a of eumelanin 1.3.
+/// η 1.55, β = 0.3, α = 2°, μ_a of eumelanin 1.3.
 pub fn params() -> FiberParams {
     FiberParams {
         eta: 1.55,

@@ -3,7 +3,7 @@
 
 use super::{CubicDeflection, MarschnerParams};
 use crate::azimuthal::wrapped_gaussian;
-use crate::bravais::{cos_theta_t, eta_par, eta_perp, gamma_t, segment_transmittance};
+use crate::bravais::{cos_theta_t, eta_double_prime, eta_prime, gamma_t, segment_transmittance};
 use crate::frame::wrap_pi;
 use crate::fresnel::fresnel_oblique;
 use glam::DVec3;
@@ -12,8 +12,8 @@ use glam::DVec3;
 /// inclination that stretches the internal path.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Interface {
-    pub(super) eta_perp: f64,
-    eta_par: f64,
+    pub(super) eta_prime: f64,
+    eta_double_prime: f64,
     cos_theta_t: f64,
     mu_a: DVec3,
 }
@@ -21,8 +21,8 @@ pub(super) struct Interface {
 impl Interface {
     pub(super) fn new(eta: f64, theta_d: f64, mu_a: DVec3) -> Self {
         Self {
-            eta_perp: eta_perp(eta, theta_d),
-            eta_par: eta_par(eta, theta_d),
+            eta_prime: eta_prime(eta, theta_d),
+            eta_double_prime: eta_double_prime(eta, theta_d),
             cos_theta_t: cos_theta_t(eta, theta_d),
             mu_a,
         }
@@ -31,19 +31,19 @@ impl Interface {
     /// A(p, h) at h = sin γ_i (Marschner et al. 2003 "Finding A", with docs/conventions.md §8's transmittance; T^p
     /// as one exponential of the p segments' summed path).
     pub(super) fn attenuation(&self, p: u32, gamma_i: f64) -> DVec3 {
-        let f = fresnel_oblique(self.eta_perp, self.eta_par, gamma_i);
+        let f = fresnel_oblique(self.eta_prime, self.eta_double_prime, gamma_i);
         if p == 0 {
             return DVec3::splat(f);
         }
-        let gt = gamma_t(gamma_i.sin(), self.eta_perp);
-        let internal = fresnel_oblique(1.0 / self.eta_perp, 1.0 / self.eta_par, gt);
+        let gt = gamma_t(gamma_i.sin(), self.eta_prime);
+        let internal = fresnel_oblique(1.0 / self.eta_prime, 1.0 / self.eta_double_prime, gt);
         let path = |mu: f64| segment_transmittance(p as f64 * mu, gt, self.cos_theta_t);
         let t = DVec3::new(path(self.mu_a.x), path(self.mu_a.y), path(self.mu_a.z));
         (1.0 - f).powi(2) * internal.powi(p as i32 - 1) * t
     }
 
     pub(super) fn deflection(&self, p: u32) -> CubicDeflection {
-        CubicDeflection::new(p, self.eta_perp)
+        CubicDeflection::new(p, self.eta_prime)
     }
 }
 
@@ -132,7 +132,7 @@ pub(super) fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 /// L ← L (1 − t g(w_c; φ − φ_c)/g(w_c; 0)) (1 − t g(w_c; φ + φ_c)/g(w_c; 0)), plus the glints
 /// t k_G A(2, h_c) Δh (g(w_c; φ − φ_c) + g(w_c; φ + φ_c)), g a wrapped unit Gaussian.
 pub(super) fn azimuthal_trt(interface: &Interface, params: &MarschnerParams, phi: f64) -> DVec3 {
-    let caustic = Caustic::new(interface.eta_perp, params);
+    let caustic = Caustic::new(interface.eta_prime, params);
     let v = params.caustic_width.powi(2);
     let g0 = wrapped_gaussian(0.0, v);
     let (g_minus, g_plus) = (

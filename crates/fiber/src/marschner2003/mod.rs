@@ -17,7 +17,7 @@
 //!   η′ ≥ 1.55 (0.037 and 0.075 at η′ = 1.4; `cubic_deflection_tracks_the_exact_one`).
 //! - A(0, h) = F(η′, η″, γ_i) and A(p, h) = (1 − F(η′, η″, γ_i))² F(1/η′, 1/η″, γ_t)^{p−1} T^p
 //!   with the oblique Fresnel factor and T = exp(−2 μ_a cos γ_t / cos θ_t), the chord of the
-//!   unit circle (docs/conventions.md §8 erratum; Marschner et al. 2003 prints exp(−σ_a(2 + 2 cos 2γ_t))). The whole
+//!   unit circle (docs/conventions.md §8 erratum; Marschner et al. 2003 prints exp(−μ_a(2 + 2 cos 2γ_t))). The whole
 //!   azimuthal part is a function of θ_d, as in Marschner's paper, so θ_t is the refracted
 //!   inclination of the difference angle, sin θ_t = sin θ_d / η (equal to θ_i's on the specular
 //!   cone), and the model stays reciprocal.

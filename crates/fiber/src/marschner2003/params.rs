@@ -12,7 +12,7 @@ pub struct MarschnerParams {
     pub alpha_r: f64,
     /// Longitudinal width (standard deviation) of the R lobe β_R (the paper: 5° to 10°).
     pub beta_r: f64,
-    /// Absorption μ_a per unit radius, RGB (the paper: σ_a from 0.2 to ∞).
+    /// Absorption μ_a per unit radius, RGB (the paper: μ_a from 0.2 to ∞).
     pub mu_a: DVec3,
     /// Eccentricity a of the cross section, 1 for a circle (the paper: 0.85 to 1).
     pub eccentricity: f64,
@@ -39,7 +39,7 @@ impl Default for MarschnerParams {
     /// (α_R = −7.5°, β_R = 7.5°, w_c = 17.5°, Δη′ = 0.3), Δh_M = 0.5, a circular fiber, and
     /// k_G = 0.5, the low end of its range and the scale at which a glint carries the energy
     /// of the offsets Δh it replaces (k_G A Δh per caustic against ½ A Δh, twice). μ_a is a
-    /// light brown starting at the table's smallest σ_a.
+    /// light brown starting at the table's smallest μ_a.
     fn default() -> Self {
         Self {
             eta: 1.55,

@@ -6,7 +6,7 @@ use super::{
     azimuthal_and_density, per_steradian_factor,
 };
 use crate::azimuthal::wrapped_gaussian;
-use crate::bravais::eta_perp;
+use crate::bravais::eta_prime;
 use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
@@ -154,7 +154,7 @@ impl Marschner2003 {
             s[2] = m[2] * self.trt(wi, wo, &circular, phi);
         }
         if probs[2] > 0.0 {
-            phi_density[2] = TrtProposal::new(circular.eta_perp, p).density(phi);
+            phi_density[2] = TrtProposal::new(circular.eta_prime, p).density(phi);
         }
         // GaussianLobe::density is ½ M_p(θ_h).
         let density: f64 = (0..3)
@@ -168,7 +168,7 @@ impl Marschner2003 {
 
     /// The density of φ given θ_d with which lobe p is sampled.
     fn phi_density(&self, p: usize, theta_d: f64, phi: f64) -> f64 {
-        let eta_prime = eta_perp(self.params.eta, theta_d);
+        let eta_prime = eta_prime(self.params.eta, theta_d);
         match p {
             2 => TrtProposal::new(eta_prime, &self.params).density(phi),
             _ => {
@@ -186,7 +186,7 @@ impl Marschner2003 {
     /// φ for lobe p given θ_d: R and TT map a uniform offset h through Φ̂, TRT draws from
     /// its mixture.
     fn sample_phi(&self, p: usize, theta_d: f64, u: [f64; 2]) -> f64 {
-        let eta_prime = eta_perp(self.params.eta, theta_d);
+        let eta_prime = eta_prime(self.params.eta, theta_d);
         match p {
             2 => TrtProposal::new(eta_prime, &self.params).sample(u[0], u[1]),
             _ => {

@@ -1,6 +1,6 @@
 use super::*;
 use crate::bravais::azimuthal_deflection;
-use crate::bravais::{eta_par, eta_perp};
+use crate::bravais::{eta_double_prime, eta_prime};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::fresnel::fresnel_oblique;
 use crate::lobe::Lobe;
@@ -38,7 +38,7 @@ fn lobe_energy(m: &Marschner2003, wi: FiberAngles, lobe: Lobe, lo: f64, hi: f64)
 
 /// ½ ∫ F(η′, η″, asin h) dh = ∫₀^{π/2} F cos γ dγ at inclination θ.
 fn fresnel_integral(eta: f64, theta: f64) -> f64 {
-    let (ep, epp) = (eta_perp(eta, theta), eta_par(eta, theta));
+    let (ep, epp) = (eta_prime(eta, theta), eta_double_prime(eta, theta));
     composite(0.0, FRAC_PI_2, 8, |g| fresnel_oblique(ep, epp, g) * g.cos())
 }
 

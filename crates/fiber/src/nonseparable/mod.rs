@@ -36,7 +36,7 @@
 pub mod cones;
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
-use crate::bravais::{azimuthal_deflection, eta_perp};
+use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::deon2011::{DEon2011, finish_sample, sample_phi};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues};
@@ -163,7 +163,7 @@ impl NonSeparable {
                 None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
             },
             1 => {
-                let h = tt_offset(phi, eta_perp(eta, theta_d));
+                let h = tt_offset(phi, eta_prime(eta, theta_d));
                 let cone = if tilted {
                     cone_tt_tilted(theta_i, alpha, eta, h)
                 } else {

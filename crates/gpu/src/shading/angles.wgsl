@@ -89,13 +89,13 @@ fn smoothstep_ab(a: f32, b: f32, x: f32) -> f32 {
 }
 
 // η′ = √(η² − sin²θ)/cos θ (Bravais; Xu et al. 2011 Table 1).
-fn eta_perp(eta: f32, theta: f32) -> f32 {
+fn eta_prime(eta: f32, theta: f32) -> f32 {
     let s = sin(theta);
     return sqrt(max(eta * eta - s * s, 0.0)) / max(abs(cos(theta)), 1e-12);
 }
 
 // η″ = η² cos θ / √(η² − sin²θ).
-fn eta_par(eta: f32, theta: f32) -> f32 {
+fn eta_double_prime(eta: f32, theta: f32) -> f32 {
     let s = sin(theta);
     return eta * eta * abs(cos(theta)) / sqrt(max(eta * eta - s * s, 1e-30));
 }
@@ -138,8 +138,8 @@ fn polarised_reflectance(eta: f32, gamma: f32, perp: bool) -> f32 {
 // F(η, θ_d, h): Marschner 2003's oblique factor with Bravais' indices (Xu et al. 2011 eq. 10).
 fn oblique(eta: f32, theta_d: f32, h: f32) -> f32 {
     let gamma = asin(clamp(h, -1.0, 1.0));
-    return 0.5 * (polarised_reflectance(eta_perp(eta, theta_d), gamma, true)
-        + polarised_reflectance(eta_par(eta, theta_d), gamma, false));
+    return 0.5 * (polarised_reflectance(eta_prime(eta, theta_d), gamma, true)
+        + polarised_reflectance(eta_double_prime(eta, theta_d), gamma, false));
 }
 
 // F₀ = (1 − η)²/(1 + η)² (Xu et al. 2011 §4.2.1).

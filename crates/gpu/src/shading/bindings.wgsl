@@ -72,7 +72,7 @@ struct Light {
 @group(0) @binding(1) var<storage, read> static_tables: array<f32>;
 @group(0) @binding(2) var<storage, read> lobe_tables: array<f32>;
 @group(0) @binding(3) var<storage, read> back_tables: array<f32>;
-// Per strand: σ_a (rgb), one spare.
+// Per strand: μ_a (rgb), one spare.
 @group(0) @binding(4) var<storage, read> strands: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read> points: array<Point>;
 // T̃ of light j at visible point k: shadow[k * lights + j].

@@ -55,7 +55,7 @@ fn trt_root(eta: f32, theta_d: f32, ep: f32, h: f32, mult: f32) -> vec2<f32> {
 }
 
 fn geometry(eta: f32, theta_d: f32) -> Geometry {
-    let ep = eta_perp(eta, theta_d);
+    let ep = eta_prime(eta, theta_d);
     var root1 = vec2<f32>(0.0, 1.0);
     var phi_star = -1.0;
     if (ep < 2.0) {
@@ -149,7 +149,7 @@ fn caustic_moments(eta: f32, theta_d: f32, ep: f32) -> CausticMoments {
     let ab = cubic_deflection(ep);
     let v = width * width;
     let g0 = wrapped_gaussian(0.0, v);
-    let epar = eta_par(eta, theta_d);
+    let epar = eta_double_prime(eta, theta_d);
     // Twice the half range in γ, cut where F's parallel part reaches total reflection.
     var kink = 0.5 * HALF_PI;
     if (epar < 1.0) {
@@ -189,8 +189,8 @@ fn caustic_energy(m: CausticMoments, g: Geometry, sigma_prime: f32) -> f32 {
 
 // trt_fit (Xu et al. 2011 eqs. 20–23 and the blend of §4.2.4), its energy that of Marschner
 // 2003's N_TRT (`CausticMoments`), as cg_lobes.rs fits it.
-fn trt_fit(g: Geometry, m: CausticMoments, sigma_a: f32) -> TrtFit {
-    let sp = sigma_a / g.cos_theta_t;
+fn trt_fit(g: Geometry, m: CausticMoments, mu_a: f32) -> TrtFit {
+    let sp = mu_a / g.cos_theta_t;
     let energy = caustic_energy(m, g, sp);
     let at_zero = g.root0.x * exp(-4.0 * sp * g.root0.y) + g.root1.x * exp(-4.0 * sp * g.root1.y);
     let l1 = params.caustic_bandwidth;

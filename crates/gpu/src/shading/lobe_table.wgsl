@@ -1,8 +1,8 @@
 // tables/lobe_table.rs in f32: a fiber's TT and TRT circular Gaussians read from the lobe table
 // over (|θ_d|, absorption), or, for an eccentric fiber's TRT, fitted on the spot.
 
-// The point's fiber: σ_a, its cells on the lobe table's absorption axis and its coordinates
-// on the back-scattering tables' (absorption_axis.rs: x = ln(1 + σ_a/0.02)).
+// The point's fiber: μ_a, its cells on the lobe table's absorption axis and its coordinates
+// on the back-scattering tables' (absorption_axis.rs: x = ln(1 + μ_a/0.02)).
 struct FiberPoint {
     mu: vec3<f32>,
     lobe_x: array<Cell, 3>,
@@ -11,8 +11,8 @@ struct FiberPoint {
 
 var<private> fiber: FiberPoint;
 
-fn absorption_coordinate(sigma_a: f32) -> f32 {
-    return log(1.0 + max(sigma_a, 0.0) / params.sigma_scale);
+fn absorption_coordinate(mu_a: f32) -> f32 {
+    return log(1.0 + max(mu_a, 0.0) / params.sigma_scale);
 }
 
 fn fiber_point(mu: vec3<f32>) -> FiberPoint {

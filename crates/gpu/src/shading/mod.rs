@@ -145,7 +145,7 @@ mod tests {
     use cuticle_render::tables::cg_integrals::Tables;
     use cuticle_render::tables::lobe_table::trt_shape;
 
-    /// cg_lobes.wgsl's TRT fit (with its caustic moments) at (η, θ_d, σ_a) on both sides of
+    /// cg_lobes.wgsl's TRT fit (with its caustic moments) at (η, θ_d, μ_a) on both sides of
     /// η′ = 2 against cg_lobes.rs's: every slot's weight within 1 % relative, its bandwidth
     /// and centre within 2e-3 (relative above 1 rad, absolute below). Measured on lavapipe:
     /// weights 4e-3, bandwidths and centres 1.2e-3, all from φ* (the fold of Φ, where f32

@@ -25,7 +25,7 @@ fn window_product(theta_j: f32, lambda: f32, mean: f32, dev: f32) -> Window {
     );
 }
 
-// Window::normal_product: N(x; a, σ_a) N(x; b, σ_b).
+// Window::normal_product: N(x; a, μ_a) N(x; b, σ_b).
 fn window_normal_product(a: f32, dev_a: f32, b: f32, dev_b: f32) -> Window {
     let va = dev_a * dev_a;
     let vb = dev_b * dev_b;

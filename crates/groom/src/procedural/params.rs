@@ -40,7 +40,7 @@ pub struct GroomParams {
     pub tip_thickness: f32,
     /// Each strand's appearance: this, with its absorption varied.
     pub appearance: Appearance,
-    /// Relative standard deviation of absorption (σ_a or melanin) between clumps and strands.
+    /// Relative standard deviation of absorption (μ_a or melanin) between clumps and strands.
     pub absorption_variation: f32,
 }
 

@@ -74,8 +74,8 @@ impl Normal {
     }
 }
 
-/// ∫_{−π/2}^{π/2} a(θ) b(θ) f(θ) dθ: a b = N(μ_a − μ_b; 0, σ_a² + σ_b²) times the normal density
-/// of mean (μ_a σ_b² + μ_b σ_a²)/(σ_a² + σ_b²) and variance σ_a²σ_b²/(σ_a² + σ_b²).
+/// ∫_{−π/2}^{π/2} a(θ) b(θ) f(θ) dθ: a b = N(μ_a − μ_b; 0, μ_a² + σ_b²) times the normal density
+/// of mean (μ_a σ_b² + μ_b μ_a²)/(μ_a² + σ_b²) and variance μ_a²σ_b²/(μ_a² + σ_b²).
 pub fn product_integral(a: Normal, b: Normal, f: impl Fn(f64) -> f64) -> f64 {
     let (va, vb) = (a.deviation.powi(2), b.deviation.powi(2));
     let sum = va + vb;
@@ -346,7 +346,7 @@ mod tests {
     }
 
     /// The closed-form product of normals integrates like a fine rule, for a narrow product,
-    /// a wide one clipped at ±π/2, and a collapsed one (σ_a = 0: the other density at μ_a).
+    /// a wide one clipped at ±π/2, and a collapsed one (μ_a = 0: the other density at μ_a).
     #[test]
     fn product_integral_matches_a_fine_rule() {
         let f = |x: f64| x.cos().powi(2) * (1.0 + 0.3 * x);

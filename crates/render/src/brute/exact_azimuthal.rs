@@ -7,16 +7,12 @@ use crate::angles::{deflection, deflection_slope, eta_prime, sigma_prime, wrap_p
 use crate::fresnel::oblique;
 
 /// A_t(θ_d, h) of mode p (0 = R, 1 = TT, 2 = TRT) for one absorption channel (Xu et al. 2011 eq. 10).
-pub fn attenuation(p: u32, eta: f64, theta_d: f64, sigma_a: f64, h: f64) -> f64 {
+pub fn attenuation(p: u32, eta: f64, theta_d: f64, mu_a: f64, h: f64) -> f64 {
     let f = oblique(eta, theta_d, h);
     if p == 0 {
         return f;
     }
-    let t = transmittance(
-        sigma_prime(sigma_a, eta, theta_d),
-        eta_prime(eta, theta_d),
-        h,
-    );
+    let t = transmittance(sigma_prime(mu_a, eta, theta_d), eta_prime(eta, theta_d), h);
     (1.0 - f).powi(2) * f.powi(p as i32 - 1) * t.powi(p as i32)
 }
 
@@ -27,21 +23,21 @@ pub fn transmittance(sigma_prime: f64, eta_prime: f64, h: f64) -> f64 {
 }
 
 /// N_t(η, θ_d, φ) by root finding on a fine grid of h (Xu et al. 2011 eq. 9).
-pub fn azimuthal(p: u32, eta: f64, theta_d: f64, sigma_a: f64, phi: f64) -> f64 {
+pub fn azimuthal(p: u32, eta: f64, theta_d: f64, mu_a: f64, phi: f64) -> f64 {
     let ep = eta_prime(eta, theta_d);
     roots(p, ep, phi)
         .into_iter()
-        .map(|h| 0.5 * attenuation(p, eta, theta_d, sigma_a, h) / deflection_slope(p, h, ep).abs())
+        .map(|h| 0.5 * attenuation(p, eta, theta_d, mu_a, h) / deflection_slope(p, h, ep).abs())
         .sum()
 }
 
 /// ∫_{−π}^{π} N_t dφ = ½ ∫_{−1}^{1} A_t dh, by 4000-point midpoint rule in h.
-pub fn energy(p: u32, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
+pub fn energy(p: u32, eta: f64, theta_d: f64, mu_a: f64) -> f64 {
     let n = 4000;
     (0..n)
         .map(|i| {
             let h = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
-            0.5 * attenuation(p, eta, theta_d, sigma_a, h) * 2.0 / n as f64
+            0.5 * attenuation(p, eta, theta_d, mu_a, h) * 2.0 / n as f64
         })
         .sum()
 }

@@ -8,8 +8,8 @@
 //! is singular.
 //!
 //! 𝒩^G_p is even in δ and θ_d. It is tabulated once per η (per-strand absorption is an axis, as
-//! in the back-scattering tables) over θ_d ∈ [0, 1.5] (48 nodes), x = ln(1 + σ_a/0.02) for
-//! σ_a ∈ [0, 1000] (64) and |δ| ∈ [0, π] (49), and read by trilinear interpolation.
+//! in the back-scattering tables) over θ_d ∈ [0, 1.5] (48 nodes), x = ln(1 + μ_a/0.02) for
+//! μ_a ∈ [0, 1000] (64) and |δ| ∈ [0, π] (49), and read by trilinear interpolation.
 
 use crate::angles::{HALF_PI, deflection, eta_prime, sigma_prime, wrap_pi};
 use crate::brute::exact_azimuthal::{attenuation, transmittance};
@@ -27,14 +27,14 @@ const H_SAMPLES: usize = 512;
 /// Modes R, TT, TRT.
 const MODES: usize = 3;
 
-/// 𝒩^G_p over (θ_d, σ_a, δ) for one η.
+/// 𝒩^G_p over (θ_d, μ_a, δ) for one η.
 #[derive(Clone, Debug)]
 pub struct ExactHalfCircle {
     /// Index ((p · θ nodes + i_θ) · σ nodes + i_σ) · δ nodes + i_δ.
     values: Vec<f64>,
 }
 
-/// The (σ_a, δ) corners of one lookup, shared by every θ_d and mode.
+/// The (μ_a, δ) corners of one lookup, shared by every θ_d and mode.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Column {
     offsets: [usize; 4],
@@ -42,19 +42,19 @@ pub struct Column {
 }
 
 /// 𝒩^G_p(δ, θ_d) at one δ, by the change of variable to h (module documentation).
-pub fn half_average(p: u32, eta: f64, theta_d: f64, sigma_a: f64, delta: f64) -> f64 {
+pub fn half_average(p: u32, eta: f64, theta_d: f64, mu_a: f64, delta: f64) -> f64 {
     let ep = eta_prime(eta, theta_d);
     let dh = 2.0 / H_SAMPLES as f64;
     (0..H_SAMPLES)
         .map(|i| -1.0 + (i as f64 + 0.5) * dh)
         .filter(|&h| wrap_pi(deflection(p, h, ep) - delta).abs() <= HALF_PI)
-        .map(|h| 0.5 * attenuation(p, eta, theta_d, sigma_a, h) * dh / PI)
+        .map(|h| 0.5 * attenuation(p, eta, theta_d, mu_a, h) * dh / PI)
         .sum()
 }
 
 /// One θ_d's entries, [p][i_σ][i_δ] flattened: [`half_average`] at every node, each offset h
 /// adding its share to the δ nodes within π/2 of its deflection (a difference array), its
-/// absorption a factor T^p on the σ_a-free attenuation.
+/// absorption a factor T^p on the μ_a-free attenuation.
 fn theta_row(eta: f64, theta_d: f64) -> Vec<f64> {
     let ep = eta_prime(eta, theta_d);
     let dh = 2.0 / H_SAMPLES as f64;
@@ -140,12 +140,12 @@ impl ExactHalfCircle {
         Self { values }
     }
 
-    /// The lookup column of one channel's σ_a and the azimuth δ = φ_o − φ_light.
-    pub fn column(sigma_a: f64, delta: f64) -> Column {
+    /// The lookup column of one channel's μ_a and the azimuth δ = φ_o − φ_light.
+    pub fn column(mu_a: f64, delta: f64) -> Column {
         let (i, fx) = cell(
             absorption_axis::max_coordinate(),
             SIGMA_NODES,
-            absorption_axis::coordinate(sigma_a),
+            absorption_axis::coordinate(mu_a),
         );
         let (j, fy) = cell(PI, DELTA_NODES, wrap_pi(delta).abs());
         let at = |i: usize, j: usize| i * DELTA_NODES + j;
@@ -160,7 +160,7 @@ impl ExactHalfCircle {
         }
     }
 
-    /// 𝒩^G_p at |θ_d| and `column`'s (σ_a, δ).
+    /// 𝒩^G_p at |θ_d| and `column`'s (μ_a, δ).
     pub fn at(&self, p: usize, theta_d: f64, column: &Column) -> f64 {
         let (i, f) = cell(THETA_MAX, THETA_NODES, theta_d.abs());
         let row = |i: usize| {
@@ -181,13 +181,13 @@ mod tests {
 
     /// (1/π) ∫ over [δ − π/2, δ + π/2] of the exact N_p in φ (root finding at each φ:
     /// independent of the change of variable the table uses).
-    fn direct(p: u32, eta: f64, theta_d: f64, sigma_a: f64, delta: f64) -> f64 {
+    fn direct(p: u32, eta: f64, theta_d: f64, mu_a: f64, delta: f64) -> f64 {
         let n = 720;
         let dphi = PI / n as f64;
         (0..n)
             .map(|i| {
                 let phi = delta - 0.5 * PI + (i as f64 + 0.5) * dphi;
-                azimuthal(p, eta, theta_d, sigma_a, wrap_pi(phi))
+                azimuthal(p, eta, theta_d, mu_a, wrap_pi(phi))
             })
             .sum::<f64>()
             * dphi
@@ -203,20 +203,20 @@ mod tests {
     fn table_matches_direct_integration_of_the_exact_lobes() {
         let eta = 1.55;
         let table = ExactHalfCircle::build(eta);
-        for &(theta_d, sigma_a, delta) in &[
+        for &(theta_d, mu_a, delta) in &[
             (0.1, 0.2, 0.3),
             (0.45, 0.05, 2.0),
             (0.8, 0.7, -1.2),
             (1.05, 2.0, 3.0),
         ] {
-            let column = ExactHalfCircle::column(sigma_a, delta);
+            let column = ExactHalfCircle::column(mu_a, delta);
             for p in 0..3 {
-                let want = direct(p as u32, eta, theta_d, sigma_a, delta);
+                let want = direct(p as u32, eta, theta_d, mu_a, delta);
                 let got = table.at(p, theta_d, &column);
-                let scale = energy(p as u32, eta, theta_d, sigma_a) / PI;
+                let scale = energy(p as u32, eta, theta_d, mu_a) / PI;
                 assert!(
                     (got - want).abs() <= [0.01, 0.035, 0.035][p] * scale + 1e-6,
-                    "mode {p} at θ_d {theta_d}, σ_a {sigma_a}, δ {delta}: table {got} direct {want} E/π {scale}"
+                    "mode {p} at θ_d {theta_d}, μ_a {mu_a}, δ {delta}: table {got} direct {want} E/π {scale}"
                 );
             }
         }
@@ -229,12 +229,12 @@ mod tests {
         let table = ExactHalfCircle::build(1.55);
         for &(i, k, j) in &[(10, 20, 7), (33, 5, 40), (2, 50, 24)] {
             let theta_d = node(THETA_MAX, THETA_NODES, i);
-            let sigma_a =
+            let mu_a =
                 absorption_axis::sigma(node(absorption_axis::max_coordinate(), SIGMA_NODES, k));
             let delta = node(PI, DELTA_NODES, j);
-            let column = ExactHalfCircle::column(sigma_a, delta);
+            let column = ExactHalfCircle::column(mu_a, delta);
             for p in 0..3 {
-                let want = half_average(p as u32, 1.55, theta_d, sigma_a, delta);
+                let want = half_average(p as u32, 1.55, theta_d, mu_a, delta);
                 let got = table.at(p, theta_d, &column);
                 assert!(
                     (got - want).abs() < 1e-9 * want.max(1e-3),

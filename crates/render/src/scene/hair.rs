@@ -4,7 +4,7 @@
 //!
 //! The groom's β and α (pbrt-style roughness and a tilt in degrees) are not Marschner's β_R and
 //! α_R; the renderer takes the longitudinal lobes from the global parameters and only the
-//! absorption (σ_a or melanin) per strand.
+//! absorption (μ_a or melanin) per strand.
 
 use cuticle_fiber::absorption::mu_a_from_melanin;
 use cuticle_fiber::marschner2003::{
@@ -26,10 +26,10 @@ pub struct HairParams {
     pub alpha_r_deg: f64,
     /// Longitudinal width β_R, degrees (β_TT = β_R/2, β_TRT = 2β_R).
     pub beta_r_deg: f64,
-    /// Absorption σ_a per unit radius for every strand; `None` takes each strand's own.
+    /// Absorption μ_a per unit radius for every strand; `None` takes each strand's own.
     #[serde(deserialize_with = "crate::scene::maybe_three")]
     pub mu_a: Option<[f64; 3]>,
-    /// σ_a of strands whose appearance carries none.
+    /// μ_a of strands whose appearance carries none.
     #[serde(deserialize_with = "crate::scene::exactly_three")]
     pub default_mu_a: [f64; 3],
     /// Eccentricity a (1 for a circular fiber; Xu et al. 2011 eq. 24).
@@ -106,7 +106,7 @@ impl HairParams {
     pub const ETA: ParamRange = ParamRange::open_below(1.0, 10.0);
     pub const ALPHA_R_DEG: ParamRange = ParamRange::closed(-20.0, 20.0);
     pub const BETA_R_DEG: ParamRange = ParamRange::closed(0.004, 60.0);
-    /// Each channel of σ_a (per unit radius).
+    /// Each channel of μ_a (per unit radius).
     pub const MU_A: ParamRange = ParamRange::closed(0.0, 1000.0);
     /// The open (1/√2, √2) of `ranges::ECCENTRICITY` as closed ends just inside it (0.70711 >
     /// 1/√2, 1.41421 < √2), not the constants themselves, which the range refuses.
@@ -145,7 +145,7 @@ impl HairParams {
     /// The shading parameters of a strand with this appearance: the exact model's parameters,
     /// which both the circular-Gaussian path and the brute-force reference read.
     pub fn fiber(&self, appearance: Option<&Appearance>) -> MarschnerParams {
-        let own = appearance.and_then(|a| a.absorption).map(sigma_a_of);
+        let own = appearance.and_then(|a| a.absorption).map(mu_a_of);
         let mu_a = match self.mu_a {
             Some(m) => DVec3::from_array(m),
             None => own.unwrap_or(DVec3::from_array(self.default_mu_a)),
@@ -163,11 +163,11 @@ impl HairParams {
     }
 }
 
-/// σ_a per unit radius of a strand's absorption: given, or from melanin through the fiber
+/// μ_a per unit radius of a strand's absorption: given, or from melanin through the fiber
 /// crate's mapping.
-pub fn sigma_a_of(absorption: Absorption) -> DVec3 {
+pub fn mu_a_of(absorption: Absorption) -> DVec3 {
     match absorption {
-        Absorption::SigmaA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
+        Absorption::MuA(s) => DVec3::new(s[0] as f64, s[1] as f64, s[2] as f64),
         Absorption::Melanin {
             eumelanin,
             pheomelanin,

@@ -97,7 +97,7 @@ pub struct Geometry {
     pub eta: f64,
     pub theta_d: f64,
     eta_prime: f64,
-    /// cos θ_t, so that σ′_a = σ_a / cos θ_t.
+    /// cos θ_t, so that σ′_a = μ_a / cos θ_t.
     cos_theta_t: f64,
     /// ½ (1 − F(0))² / |dΦ/dh(1, 0)|: b_tt without T.
     tt_peak: f64,
@@ -142,14 +142,14 @@ impl Geometry {
         }
     }
 
-    fn sigma_prime(&self, sigma_a: f64) -> f64 {
-        sigma_a / self.cos_theta_t
+    fn sigma_prime(&self, mu_a: f64) -> f64 {
+        mu_a / self.cos_theta_t
     }
 }
 
-/// N_TT as one circular Gaussian at π (eqs. 15–19). `sigma_a` per unit radius.
-pub fn tt_lobe(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> Lobe {
-    tt_fit(&Geometry::new(tables, eta, theta_d), sigma_a)
+/// N_TT as one circular Gaussian at π (eqs. 15–19). `mu_a` per unit radius.
+pub fn tt_lobe(tables: &Tables, eta: f64, theta_d: f64, mu_a: f64) -> Lobe {
+    tt_fit(&Geometry::new(tables, eta, theta_d), mu_a)
 }
 
 /// [`tt_lobe`] from shared geometry: the pair b (g^c(φ; π + δ, λ) + g^c(φ; π − δ, λ)) (`centre`
@@ -164,8 +164,8 @@ pub fn tt_lobe(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> Lobe {
 /// fifth of its energy; a directional light beside the fiber (φ ≈ 1–1.5) then saw several times
 /// the model's TT. Where the model's N_TT is
 /// peakier than a Gaussian of its C₁ the pair closes to δ = 0 (value not matched).
-pub fn tt_fit(g: &Geometry, sigma_a: f64) -> Lobe {
-    let sp = g.sigma_prime(sigma_a);
+pub fn tt_fit(g: &Geometry, mu_a: f64) -> Lobe {
+    let sp = g.sigma_prime(mu_a);
     let a = taylor::relative(1, sp, g.eta_prime);
     let relative_energy = 0.5 * (a[0] * g.h_tt[0] + a[1] * g.h_tt[1] + a[2] * g.h_tt[2]);
     let peak = g.tt_peak * (-2.0 * sp).exp();
@@ -180,7 +180,7 @@ pub fn tt_fit(g: &Geometry, sigma_a: f64) -> Lobe {
 }
 
 /// C₁ = ∫ N_TT cos(φ − π) dφ / ∫ N_TT dφ with N_TT dφ = ½ (1 − F)² T dh (Marschner et al. 2003
-/// eq. 8 for p = 1) by Gauss–Legendre over h, T = e^{−2σ′ cos γ_t}, σ′ = σ_a / cos θ_t (the
+/// eq. 8 for p = 1) by Gauss–Legendre over h, T = e^{−2σ′ cos γ_t}, σ′ = μ_a / cos θ_t (the
 /// chord of the fiber crate's `segment_transmittance`, docs/conventions.md §8).
 fn tt_circular_mean(g: &Geometry, sigma_prime: f64) -> f64 {
     let rule = GaussLegendre::cached(48);
@@ -294,20 +294,20 @@ fn bessel_ratio(kappa: f64) -> f64 {
 }
 
 /// ∫ N_TT dφ by the Taylor expansion and ℋ^TT (eq. 19).
-pub fn tt_energy(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
+pub fn tt_energy(tables: &Tables, eta: f64, theta_d: f64, mu_a: f64) -> f64 {
     let ep = eta_prime(eta, theta_d);
-    let a = taylor::coefficients(1, sigma_prime(sigma_a, eta, theta_d), ep);
+    let a = taylor::coefficients(1, sigma_prime(mu_a, eta, theta_d), ep);
     let h = tables.h_tt(eta, theta_d);
     0.5 * (a[0] * h[0] + a[1] * h[1] + a[2] * h[2])
 }
 
 /// ∫ N_TRT dφ by the Taylor expansion of T² and ℋ^TRT (eq. 23).
-pub fn trt_energy(tables: &Tables, eta: f64, theta_d: f64, sigma_a: f64) -> f64 {
-    trt_energy_of(&Geometry::new(tables, eta, theta_d), sigma_a)
+pub fn trt_energy(tables: &Tables, eta: f64, theta_d: f64, mu_a: f64) -> f64 {
+    trt_energy_of(&Geometry::new(tables, eta, theta_d), mu_a)
 }
 
-fn trt_energy_of(g: &Geometry, sigma_a: f64) -> f64 {
-    let c = taylor::coefficients(2, g.sigma_prime(sigma_a), g.eta_prime);
+fn trt_energy_of(g: &Geometry, mu_a: f64) -> f64 {
+    let c = taylor::coefficients(2, g.sigma_prime(mu_a), g.eta_prime);
     0.5 * (c[0] * g.h_trt[0] + c[1] * g.h_trt[1] + c[2] * g.h_trt[2])
 }
 
@@ -377,17 +377,21 @@ impl CausticMoments {
         // A(2, h) without T², as the model forms it: the internal reflection from Bravais'
         // inverse indices at the refracted γ_t (at θ_d ≠ 0 it differs from F(γ), which eq. 23
         // uses, because η″ ≠ η′).
-        let (eta_perp, eta_par) = (g.eta_prime, bravais::eta_par(g.eta, g.theta_d));
+        let (eta_prime, eta_double_prime) =
+            (g.eta_prime, bravais::eta_double_prime(g.eta, g.theta_d));
         let trt = |h: f64| {
             let f = oblique(g.eta, g.theta_d, h);
-            let internal =
-                fresnel_oblique(1.0 / eta_perp, 1.0 / eta_par, bravais::gamma_t(h, eta_perp));
+            let internal = fresnel_oblique(
+                1.0 / eta_prime,
+                1.0 / eta_double_prime,
+                bravais::gamma_t(h, eta_prime),
+            );
             (1.0 - f).powi(2) * internal
         };
         // The integrand is even in γ (F is, Φ̂ is odd and keep symmetric in ±φ_c): twice the
         // half range, in γ (h = sin γ, dh = cos γ dγ) where keep(Φ̂) is smooth, cut where F's
         // parallel part reaches total reflection (h = η″ once η″ < 1, at grazing θ_d).
-        let kink = (eta_par < 1.0).then(|| eta_par.asin());
+        let kink = (eta_double_prime < 1.0).then(|| eta_double_prime.asin());
         let cuts = [0.0, kink.unwrap_or(0.5 * FRAC_PI_2), FRAC_PI_2];
         let rule = GaussLegendre::cached(KEPT_POINTS);
         let mut kept = [0.0; 3];
@@ -426,25 +430,14 @@ impl CausticMoments {
 /// N_TRT as three (η′ < 2) or one circular Gaussian (eqs. 20–23 and the blend of §4.2.4), as
 /// [glint at +φ*, glint at −φ*, centre]; beyond η′ = 2 the one lobe fills both glint slots at
 /// φ* = 0, half its weight in each, and the centre slot is empty.
-pub fn trt_lobes(
-    tables: &Tables,
-    eta: f64,
-    theta_d: f64,
-    sigma_a: f64,
-    shape: TrtShape,
-) -> [Lobe; 3] {
+pub fn trt_lobes(tables: &Tables, eta: f64, theta_d: f64, mu_a: f64, shape: TrtShape) -> [Lobe; 3] {
     let g = Geometry::new(tables, eta, theta_d);
-    trt_fit(&g, &CausticMoments::new(&g, shape), sigma_a, shape)
+    trt_fit(&g, &CausticMoments::new(&g, shape), mu_a, shape)
 }
 
 /// [`trt_lobes`] from shared geometry and the caustic moments of the same (η, θ_d).
-pub fn trt_fit(
-    g: &Geometry,
-    caustics: &CausticMoments,
-    sigma_a: f64,
-    shape: TrtShape,
-) -> [Lobe; 3] {
-    let sp = g.sigma_prime(sigma_a);
+pub fn trt_fit(g: &Geometry, caustics: &CausticMoments, mu_a: f64, shape: TrtShape) -> [Lobe; 3] {
+    let sp = g.sigma_prime(mu_a);
     let energy = caustics.energy(g, sp);
     // N_TRT(0) = ½ Σ A/|dΦ/dh| over h = 0 and, for η′ < 2, ±η′√(1 − η′²/4).
     let at_zero: f64 = g
@@ -574,12 +567,12 @@ mod tests {
     }
 
     /// The fiber crate's Marschner 2003 N_TRT (caustics and glints included) at (η, θ_d) for one
-    /// absorption σ_a, read from the model's S on θ_h = 0 divided by ½ M_TRT(0) / cos θ_d.
-    fn model_trt(eta: f64, theta_d: f64, sigma_a: f64, phi: f64) -> f64 {
+    /// absorption μ_a, read from the model's S on θ_h = 0 divided by ½ M_TRT(0) / cos θ_d.
+    fn model_trt(eta: f64, theta_d: f64, mu_a: f64, phi: f64) -> f64 {
         use cuticle_fiber::{FiberAngles, FiberModel, Marschner2003};
         let params = MarschnerParams {
             eta,
-            mu_a: glam::DVec3::splat(sigma_a),
+            mu_a: glam::DVec3::splat(mu_a),
             ..MarschnerParams::default()
         };
         let (alpha, beta) = params.longitudinal()[2];
@@ -599,7 +592,7 @@ mod tests {
     /// practical one (caustics removed, glints added), not Xu et al. 2011's ∫ N_P (eq. 23),
     /// which is 1.8–2.3× larger at the default caustics: within 3 % of the model's ∫ N_TRT dφ
     /// (by 7200-point quadrature) at θ_d = 0, π/6, π/3 and η′ on both sides of 2, for light
-    /// and dark absorption (the Taylor T² errs by up to 3 % at σ_a = 1). And the blend stays
+    /// and dark absorption (the Taylor T² errs by up to 3 % at μ_a = 1). And the blend stays
     /// continuous across η′ = 2 (1 %).
     #[test]
     fn trt_gaussians_carry_the_model_energy_and_blend_continuously() {
@@ -610,7 +603,7 @@ mod tests {
                 let e = integral(|phi| model_trt(eta, td, sigma, phi));
                 assert!(
                     (fit / e - 1.0).abs() < 0.03,
-                    "η {eta} θ_d {td} σ_a {sigma}: {fit} vs {e} (∫ N_P {})",
+                    "η {eta} θ_d {td} μ_a {sigma}: {fit} vs {e} (∫ N_P {})",
                     exact_azimuthal::energy(2, eta, td, sigma)
                 );
             }

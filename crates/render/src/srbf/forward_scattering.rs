@@ -17,7 +17,7 @@
 //! Zinke et al. 2008 take ā_f^n with n the count along one shadow ray and a binary direct
 //! fraction; raising ā_f to the *mean* count while taking T̃ = e^{−n} for the direct fraction
 //! (as this module did) gives T_f < T̃ whenever ā_f < e^{−1}, i.e. no global term at all for
-//! σ_a ≳ 0.5 (tests/slab.rs measures both against an exact path trace of a fiber slab). The
+//! μ_a ≳ 0.5 (tests/slab.rs measures both against an exact path trace of a fiber slab). The
 //! maps count a point's own strand as well, but as under 0.2 crossings on a slab of
 //! random fibers (tests/slab.rs), so nothing is subtracted for it.
 

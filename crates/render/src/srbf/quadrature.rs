@@ -32,7 +32,7 @@ impl Window {
         }
     }
 
-    /// The product of a unit normal density N(x; a, σ_a) with another N(x; b, σ_b).
+    /// The product of a unit normal density N(x; a, μ_a) with another N(x; b, σ_b).
     pub fn normal_product(a: f64, dev_a: f64, b: f64, dev_b: f64) -> Self {
         let (va, vb) = (dev_a * dev_a, dev_b * dev_b);
         let s = va + vb;

@@ -14,7 +14,7 @@
 //! - σ̄_b = (1 + d_b ā_f²)(ā_b √(2β_f² + β_b²) + ā_b³ √(2β_f² + 3β_b²)) / (ā_b + ā_b³(2β_f + 3β_b)),
 //!
 //! the last exactly as the paper prints it. The table axes are θ_d ∈ [0, 1.5] (64 nodes) and
-//! x = ln(1 + σ_a/0.02) for σ_a ∈ [0, 1000] (64 nodes), so that per-strand absorption needs no
+//! x = ln(1 + μ_a/0.02) for μ_a ∈ [0, 1000] (64 nodes), so that per-strand absorption needs no
 //! rebuild; entries are the smooth moments [ā_f, ā_b, α_f, α_b, β_f², β_b²], and the three
 //! combinations above are formed after interpolation.
 
@@ -56,13 +56,13 @@ pub struct Averages {
 }
 
 /// (a_f, a_b) of mode p for one channel, by the change of variable φ = Φ(p, h).
-pub fn mode_attenuations(p: u32, eta: f64, theta_d: f64, sigma_a: f64) -> (f64, f64) {
+pub fn mode_attenuations(p: u32, eta: f64, theta_d: f64, mu_a: f64) -> (f64, f64) {
     let ep = eta_prime(eta, theta_d);
     let dh = 2.0 / H_SAMPLES as f64;
     let (mut forward, mut back) = (0.0, 0.0);
     for i in 0..H_SAMPLES {
         let h = -1.0 + (i as f64 + 0.5) * dh;
-        let share = 0.5 * attenuation(p, eta, theta_d, sigma_a, h) * dh;
+        let share = 0.5 * attenuation(p, eta, theta_d, mu_a, h) * dh;
         if wrap_pi(deflection(p, h, ep)).abs() > HALF_PI {
             forward += share;
         } else {
@@ -93,13 +93,13 @@ pub fn averages_from_moments(moments: [f64; 6], d_b: f64) -> [f64; 5] {
     [af, beta_f2, big_ab, shift, width.max(1e-4)]
 }
 
-/// The stored entry at (θ_d, σ_a): [ā_f, ā_b, α_f, α_b, β_f², β_b²], smooth enough to
+/// The stored entry at (θ_d, μ_a): [ā_f, ā_b, α_f, α_b, β_f², β_b²], smooth enough to
 /// interpolate; Zinke's strongly nonlinear combinations are formed after the lookup.
-fn entry(fiber: &MarschnerParams, theta_d: f64, sigma_a: f64) -> [f64; 6] {
+fn entry(fiber: &MarschnerParams, theta_d: f64, mu_a: f64) -> [f64; 6] {
     let mut forward = [0.0; 3];
     let mut back = [0.0; 3];
     for p in 0..3 {
-        (forward[p], back[p]) = mode_attenuations(p as u32, fiber.eta, theta_d, sigma_a);
+        (forward[p], back[p]) = mode_attenuations(p as u32, fiber.eta, theta_d, mu_a);
     }
     moments(forward, back, fiber.longitudinal())
 }
@@ -139,12 +139,12 @@ impl BackScatteringTables {
         }
     }
 
-    /// The averages at |θ_d| for one channel's σ_a.
-    pub fn at(&self, theta_d: f64, sigma_a: f64) -> Averages {
-        self.at_coordinate(theta_d, absorption_axis::coordinate(sigma_a))
+    /// The averages at |θ_d| for one channel's μ_a.
+    pub fn at(&self, theta_d: f64, mu_a: f64) -> Averages {
+        self.at_coordinate(theta_d, absorption_axis::coordinate(mu_a))
     }
 
-    /// [`Self::at`] from σ_a's [`absorption_axis::coordinate`], which shading computes once a
+    /// [`Self::at`] from μ_a's [`absorption_axis::coordinate`], which shading computes once a
     /// point.
     pub fn at_coordinate(&self, theta_d: f64, x: f64) -> Averages {
         let moments = self.grid.lookup(theta_d.abs(), x);
@@ -183,13 +183,13 @@ mod tests {
 
     /// ∫ N_p over the forward and backward half circles, integrating the exact N_p in φ
     /// (root finding at each φ: independent of the change of variable the tables use).
-    fn direct(p: u32, eta: f64, theta_d: f64, sigma_a: f64) -> (f64, f64) {
+    fn direct(p: u32, eta: f64, theta_d: f64, mu_a: f64) -> (f64, f64) {
         let n = 1440;
         let dphi = 2.0 * PI / n as f64;
         let (mut f, mut b) = (0.0, 0.0);
         for i in 0..n {
             let phi = -PI + (i as f64 + 0.5) * dphi;
-            let v = azimuthal(p, eta, theta_d, sigma_a, phi) * dphi;
+            let v = azimuthal(p, eta, theta_d, mu_a, phi) * dphi;
             if phi.abs() > HALF_PI { f += v } else { b += v }
         }
         (f, b)
@@ -201,15 +201,15 @@ mod tests {
         let fiber = hair.fiber(None);
         let tables = BackScatteringTables::build(&fiber, hair.d_b);
         // Off-node queries: interpolation error is part of what is measured.
-        for &(theta_d, sigma_a) in &[(0.1, 0.2), (0.45, 0.05), (0.8, 0.7), (1.05, 2.0)] {
+        for &(theta_d, mu_a) in &[(0.1, 0.2), (0.45, 0.05), (0.8, 0.7), (1.05, 2.0)] {
             let mut forward = [0.0; 3];
             let mut back = [0.0; 3];
             for p in 0..3 {
-                (forward[p], back[p]) = direct(p as u32, fiber.eta, theta_d, sigma_a);
+                (forward[p], back[p]) = direct(p as u32, fiber.eta, theta_d, mu_a);
             }
             let want =
                 averages_from_moments(moments(forward, back, fiber.longitudinal()), hair.d_b);
-            let got = tables.at(theta_d, sigma_a);
+            let got = tables.at(theta_d, mu_a);
             let got = [
                 got.forward,
                 got.forward_variance,
@@ -229,7 +229,7 @@ mod tests {
             for k in 0..5 {
                 assert!(
                     (got[k] - want[k]).abs() <= tol[k],
-                    "entry {k} at θ_d {theta_d}, σ_a {sigma_a}: table {} direct {}",
+                    "entry {k} at θ_d {theta_d}, μ_a {mu_a}: table {} direct {}",
                     got[k],
                     want[k]
                 );

@@ -132,7 +132,7 @@ const THETA_D_MAX: f64 = 1.56;
 /// Nodes over the [`absorption_axis`].
 const SIGMA_NODES: usize = 256;
 
-/// The lobes of one colour channel, fitted at every node of (|θ_d|, ln(1 + σ_a/0.02)) for a
+/// The lobes of one colour channel, fitted at every node of (|θ_d|, ln(1 + μ_a/0.02)) for a
 /// fiber's η and TRT shape: per-strand absorption (every strand of a preset groom differs) and
 /// absorption edits read the same table, and only η or the caustic parameters rebuild it.
 /// Between nodes the weights are interpolated linearly: where the interpolation errs most, at
@@ -160,8 +160,8 @@ impl LobeTable {
         );
         let fit = |td: f64, x: f64| (Geometry::new(tables, eta, td), absorption_axis::sigma(x));
         let tt = Grid2::build(axes.0, axes.1, |td, x| {
-            let (g, sigma_a) = fit(td, x);
-            let tt = tt_fit(&g, sigma_a);
+            let (g, mu_a) = fit(td, x);
+            let tt = tt_fit(&g, mu_a);
             [tt.weight, tt.bandwidth, tt.centre - PI]
         });
         // The caustic moments depend on θ_d alone: once per θ_d node.
@@ -172,9 +172,9 @@ impl LobeTable {
             })
             .collect();
         let trt = Grid2::build(axes.0, axes.1, |td, x| {
-            let (g, sigma_a) = fit(td, x);
+            let (g, mu_a) = fit(td, x);
             let node = (td / THETA_D_MAX * (THETA_D_NODES - 1) as f64).round() as usize;
-            let [glint, _, centre] = trt_fit(&g, &caustics[node], sigma_a, shape);
+            let [glint, _, centre] = trt_fit(&g, &caustics[node], mu_a, shape);
             [
                 glint.centre,
                 glint.weight,

@@ -70,15 +70,15 @@ pub enum Tool {
 pub enum AbsorptionEdit {
     /// Each strand's own (the groom's; for all strands only).
     Own,
-    /// σ_a per unit radius, RGB.
-    SigmaA([f64; 3]),
+    /// μ_a per unit radius, RGB.
+    MuA([f64; 3]),
     /// Eumelanin and pheomelanin concentrations.
     Melanin([f64; 2]),
     /// A target colour (linear RGB), through Chiang et al. 2016 eq. 9.
     Colour([f32; 3]),
 }
 
-/// Azimuthal roughness β_n at which a target colour is inverted into σ_a (Chiang et al. 2016
+/// Azimuthal roughness β_n at which a target colour is inverted into μ_a (Chiang et al. 2016
 /// eq. 9 is stated for their model; Marschner's caustic width plays the part here).
 pub const COLOUR_BETA_N: f64 = 0.3;
 
@@ -87,7 +87,7 @@ impl AbsorptionEdit {
     pub fn absorption(&self) -> Option<Absorption> {
         match *self {
             Self::Own => None,
-            Self::SigmaA(s) => Some(Absorption::SigmaA(s.map(|c| c as f32))),
+            Self::MuA(s) => Some(Absorption::MuA(s.map(|c| c as f32))),
             Self::Melanin([e, p]) => Some(Absorption::Melanin {
                 eumelanin: e as f32,
                 pheomelanin: p as f32,
@@ -97,7 +97,7 @@ impl AbsorptionEdit {
                     glam::Vec3::from_array(c).as_dvec3(),
                     COLOUR_BETA_N,
                 );
-                Some(crate::look::sigma_a(m))
+                Some(crate::look::mu_a(m))
             }
         }
     }
@@ -106,7 +106,7 @@ impl AbsorptionEdit {
     pub fn of(a: Option<Absorption>) -> Self {
         match a {
             None => Self::Own,
-            Some(Absorption::SigmaA(s)) => Self::SigmaA(s.map(f64::from)),
+            Some(Absorption::MuA(s)) => Self::MuA(s.map(f64::from)),
             Some(Absorption::Melanin {
                 eumelanin,
                 pheomelanin,
@@ -121,9 +121,9 @@ pub struct Controls {
     pub brush: Brush,
     pub brush_edit: AbsorptionEdit,
     pub all_edit: AbsorptionEdit,
-    /// The σ_a text of the all-strands editor ("r, g, b" or one value).
+    /// The μ_a text of the all-strands editor ("r, g, b" or one value).
     pub sigma_text: String,
-    /// The σ_a text of the brush's editor.
+    /// The μ_a text of the brush's editor.
     pub brush_sigma_text: String,
     pub groom_text: String,
     pub strands: usize,
@@ -535,10 +535,10 @@ impl ViewApp {
         let Some(target) = self.controls.brush_edit.absorption() else {
             return 0;
         };
-        let to = cuticle_render::scene::hair::sigma_a_of(target);
+        let to = cuticle_render::scene::hair::mu_a_of(target);
         let range = cuticle_render::HairParams::MU_A;
         if !to.to_array().iter().all(|&c| range.contains(c)) {
-            self.error(format!("the brush's σ_a {to} is outside {range}"));
+            self.error(format!("the brush's μ_a {to} is outside {range}"));
             return 0;
         }
         let (Some(look), Some(shown)) = (&mut self.look, &self.shown) else {
@@ -551,8 +551,8 @@ impl ViewApp {
         let mut changed = 0;
         for (s, w) in brush.dab(&shown.frame.strands, look.spec.width, x, y) {
             let s = s as usize;
-            let new = crate::paint::brush::blend(look.sigma_a(s), to, w);
-            let new = Some(crate::look::sigma_a(new));
+            let new = crate::paint::brush::blend(look.mu_a(s), to, w);
+            let new = Some(crate::look::mu_a(new));
             if s < look.paint.len() && look.paint[s] != new {
                 look.paint[s] = new;
                 changed += 1;
@@ -637,7 +637,7 @@ impl ViewApp {
 fn check(look: &Look) -> Result<(), String> {
     let mut spec = look.spec.clone();
     if let Some(a) = look.all_strands {
-        let s = cuticle_render::scene::hair::sigma_a_of(a);
+        let s = cuticle_render::scene::hair::mu_a_of(a);
         spec.hair.mu_a = Some(s.to_array());
     }
     spec.validate().map_err(|e| e.to_string())

@@ -163,15 +163,15 @@ fn absorption_editor(
             *edit = AbsorptionEdit::Own;
             changed = true;
         }
-        let sigma = crate::look::sigma_a_of_edit(edit);
+        let sigma = crate::look::mu_a_of_edit(edit);
         if ui
             .radio(
-                matches!(edit, AbsorptionEdit::SigmaA(_)),
-                format!("{prefix}σ_a"),
+                matches!(edit, AbsorptionEdit::MuA(_)),
+                format!("{prefix}μ_a"),
             )
             .clicked()
         {
-            *edit = AbsorptionEdit::SigmaA(sigma.to_array());
+            *edit = AbsorptionEdit::MuA(sigma.to_array());
             *text = format_rgb(sigma.to_array());
             changed = true;
         }
@@ -198,14 +198,14 @@ fn absorption_editor(
     });
     match edit {
         AbsorptionEdit::Own => {}
-        AbsorptionEdit::SigmaA(s) => {
+        AbsorptionEdit::MuA(s) => {
             if text.is_empty() {
                 *text = format_rgb(*s);
             }
             let r = ui
                 .add(egui::TextEdit::singleline(text).hint_text("r, g, b"))
                 .on_hover_text(format!(
-                    "σ_a per unit radius, one value or r, g, b, each in {}",
+                    "μ_a per unit radius, one value or r, g, b, each in {}",
                     HairParams::MU_A
                 ));
             if r.lost_focus() || (r.changed() && ui.input(|i| i.key_pressed(egui::Key::Enter))) {
@@ -220,7 +220,7 @@ fn absorption_editor(
             }
         }
         AbsorptionEdit::Melanin(m) => {
-            // The largest concentration whose σ_a stays inside the validated range.
+            // The largest concentration whose μ_a stays inside the validated range.
             let max = HairParams::MU_A.max / cuticle_fiber::absorption::EUMELANIN_SIGMA_A.z;
             let r = 0.0..=max;
             changed |= ui
@@ -259,7 +259,7 @@ pub fn parse_rgb(text: &str) -> Result<[f64; 3], String> {
     match v.as_deref() {
         Ok([x]) => Ok([*x; 3]),
         Ok([r, g, b]) => Ok([*r, *g, *b]),
-        _ => Err(format!("σ_a takes one number or r, g, b, not {text:?}")),
+        _ => Err(format!("μ_a takes one number or r, g, b, not {text:?}")),
     }
 }
 

@@ -4,7 +4,7 @@
 //! visibility buffer within r; a subsample at distance d takes the weight
 //! strength × f(d / r), f = 1 inside the hard core (1 − soft edge) and falling smoothly
 //! (smoothstep) to 0 at the rim. A strand takes the largest weight of its subsamples and moves
-//! its σ_a that fraction of the way to the brush's.
+//! its μ_a that fraction of the way to the brush's.
 
 use crate::shading::StrandBuffer;
 use cuticle_groom::Absorption;
@@ -94,7 +94,7 @@ impl Brush {
     }
 }
 
-/// σ_a moved the fraction `w` of the way from `from` to `to`.
+/// μ_a moved the fraction `w` of the way from `from` to `to`.
 pub fn blend(from: DVec3, to: DVec3, w: f64) -> DVec3 {
     from + (to - from) * w.clamp(0.0, 1.0)
 }

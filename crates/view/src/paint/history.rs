@@ -62,8 +62,8 @@ mod tests {
     #[test]
     fn undo_and_redo_walk_the_layers() {
         let a: PaintLayer = vec![None, None];
-        let b: PaintLayer = vec![Some(Absorption::SigmaA([1.0, 2.0, 3.0])), None];
-        let c: PaintLayer = vec![None, Some(Absorption::SigmaA([0.5, 0.5, 0.5]))];
+        let b: PaintLayer = vec![Some(Absorption::MuA([1.0, 2.0, 3.0])), None];
+        let c: PaintLayer = vec![None, Some(Absorption::MuA([0.5, 0.5, 0.5]))];
         let mut h = History::default();
         h.record(a.clone());
         h.record(b.clone());
