@@ -314,7 +314,6 @@ impl Loop {
     fn fail(&self, id: u64, message: String) {
         self.send(Report::Failed { id, message });
     }
-
 }
 
 /// One frame of `scene` by `slot`'s back end (`None` when cancelled).

@@ -150,7 +150,11 @@ fn each_edit_redoes_only_what_it_changes() {
 
     look.spec.hair.d_b *= 0.5;
     let (dimmer, built) = bench.frames(&look);
-    assert_eq!((prepared(&dimmer), built), (false, NONE), "d_b enters after the lookup");
+    assert_eq!(
+        (prepared(&dimmer), built),
+        (false, NONE),
+        "d_b enters after the lookup"
+    );
     assert_ne!(full(&dimmer), full(&widened), "the d_b edit shows");
 
     look.spec.hair.eta += 0.05;
@@ -170,12 +174,20 @@ fn each_edit_redoes_only_what_it_changes() {
     let (moved, built) = bench.frames(&look);
     assert!(prepared(&moved), "a camera move re-prepares");
     assert_eq!(built, NONE, "a camera move rebuilt a table");
-    assert_eq!(shadow_passes(&moved), 2, "a camera move recomputed the shadows");
+    assert_eq!(
+        shadow_passes(&moved),
+        2,
+        "a camera move recomputed the shadows"
+    );
     assert_ne!(full(&moved), full(&refracted), "the camera move shows");
 
     look.spec.shadows.density = 0.5;
     let (thinner, _) = bench.frames(&look);
-    assert_eq!(shadow_passes(&thinner), 4, "new shadow settings recompute them");
+    assert_eq!(
+        shadow_passes(&thinner),
+        4,
+        "new shadow settings recompute them"
+    );
 }
 
 /// The shadows kept across a camera move give the image a fresh renderer makes: the frame
