@@ -1,12 +1,16 @@
 //! The CPU renderer (crate `cuticle-render`, f64, rayon over the machine's cores) behind
 //! [`Shading`]. It keeps T̃ of every light at every point of the groom (stage 3, which depends
-//! on the groom, lights and shadow settings only), so that a camera move re-runs drawing alone.
+//! on the groom, lights and shadow settings only), so that a camera move re-runs drawing alone,
+//! up to [`KEPT_SHADOW_VALUES`]; a larger groom computes them at the visible points each time.
 
 use crate::shading::{NO_STRAND, Shading, StrandBuffer};
 use cuticle_groom::GroomParts;
 use cuticle_render::frame::raster::EMPTY;
 use cuticle_render::{Image, Prepared, Renderer, Scene, ShadowOptions, Timings, WorldLight};
 use std::sync::atomic::AtomicBool;
+
+/// Most T̃ values (points × lights) kept: 128 MiB of f32.
+pub const KEPT_SHADOW_VALUES: usize = 1 << 25;
 
 /// What the kept transmittances were computed for.
 #[derive(Clone, Debug, PartialEq)]
@@ -27,7 +31,8 @@ pub struct CpuShading {
     renderer: Renderer,
     prepared: Option<Prepared>,
     shadows: Option<KeptShadows>,
-    /// Times T̃ was computed for every point (a new groom, lights or shadow settings).
+    /// Times T̃ was computed: for every point (a new groom, lights or shadow settings), or at
+    /// the visible points of a groom too large to keep them for.
     shadow_passes: u64,
 }
 
@@ -43,8 +48,17 @@ impl CpuShading {
     }
 
     /// T̃ at the prepared points, from the kept values unless the groom, lights or shadow
-    /// settings changed (then for every point of the groom, and kept).
+    /// settings changed (then for every point of the groom, and kept), or computed there alone
+    /// beyond [`KEPT_SHADOW_VALUES`].
     fn shadows_at(&mut self, scene: &Scene, prepared: &Prepared) -> Vec<f32> {
+        let nl = prepared.lights.len();
+        if scene.groom.point_count().saturating_mul(nl) > KEPT_SHADOW_VALUES {
+            self.shadows = None;
+            self.shadow_passes += 1;
+            return self
+                .renderer
+                .shadows(scene, &prepared.points, &prepared.lights);
+        }
         let key = ShadowKey {
             groom: scene.groom.parts().clone(),
             lights: prepared.lights.clone(),
@@ -60,7 +74,6 @@ impl CpuShading {
         let Some(kept) = &self.shadows else {
             return Vec::new();
         };
-        let nl = prepared.lights.len();
         prepared
             .points
             .iter()
