@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# The GPU back end on a real GPU, in a few minutes (issue 10): the parity, shadow and edit tests
+# The GPU back end on a real GPU, in a few minutes (issue 10): the drawing, parity, shadow and edit tests
 # on the hardware adapter, then the benchmark on the paper's workload (10,000 strands, 40 SRBF lights,
 # 720 x 480, single + multiple scattering) on the GPU and, for a same-run ratio, on the CPU.
 # Results land in out/gpu-check/: adapters.txt, tests.log, bench-gpu/ and bench-cpu/bench.json.
 #
 #   bash scripts/gpu-check.sh              # builds, then runs (needs crates.io or a warm target/)
 #   bash scripts/gpu-check.sh --prebuilt D # runs binaries built elsewhere and copied into D:
-#                                          #   D/cuticle, D/parity, D/shadows, D/edits
+#                                          #   D/cuticle, D/drawing, D/parity, D/shadows,
+#                                          #   D/edits
 #                                          #   (see --stage)
 #   bash scripts/gpu-check.sh --stage D    # on a machine that can build: build and copy them to D
 #
@@ -31,6 +32,7 @@ stage() {
     cp target/release/cuticle "$1/"
     for t in $tests; do
         case $(basename "$t") in
+        drawing-*) cp "$t" "$1/drawing" ;;
         parity-*) cp "$t" "$1/parity" ;;
         edits-*) cp "$t" "$1/edits" ;;
         shadows-*) cp "$t" "$1/shadows" ;;
@@ -60,11 +62,12 @@ if command -v vulkaninfo >/dev/null; then
     fi
 fi
 
-# Parity (GPU against CPU images and shadow maps, the bounds of crates/gpu/tests) and edit
-# tests (passes counted).
-{ "$bin/parity" --nocapture --test-threads 1 && "$bin/shadows" --nocapture --test-threads 1 &&
-    "$bin/edits" --nocapture --test-threads 1; } 2>&1 |
-    tee "$out/tests.log" | grep -E "relative RMSE|moves this image|shadows|unfiltered|test result|panicked|FAILED"
+# Parity (GPU against CPU drawings, images and shadow maps, the bounds of crates/gpu/tests) and
+# edit tests (passes counted).
+{ "$bin/drawing" --nocapture --test-threads 1 && "$bin/parity" --nocapture --test-threads 1 &&
+    "$bin/shadows" --nocapture --test-threads 1 && "$bin/edits" --nocapture --test-threads 1; } 2>&1 |
+    tee "$out/tests.log" |
+    grep -E "subsamples covered|to the side|relative RMSE|moves this image|shadows|unfiltered|test result|panicked|FAILED"
 
 "$bin/cuticle" bench render --device gpu --strands 10000 --frames 5 --out "$out/bench-gpu"
 "$bin/cuticle" bench render --device cpu --strands 10000 --frames 1 --out "$out/bench-cpu"

@@ -1,5 +1,5 @@
-//! The GPU renderer's benchmark, the twin of `cuticle_render::bench`: full frames (drawing on
-//! the CPU, upload, shadows, shading and resolve on the GPU) and re-renders after an
+//! The GPU renderer's benchmark, the twin of `cuticle_render::bench`: full frames (drawing,
+//! upload, shadows, shading and resolve on the GPU) and re-renders after an
 //! absorption edit (every strand's record rewritten, then shading and resolve), as medians of
 //! each stage, with the GPU's own timestamps where the adapter has them.
 
@@ -23,15 +23,15 @@ pub struct GpuBenchReport {
     pub upload: f64,
     /// Median wall seconds of a full frame: drawing + shadows + upload + shading + resolve.
     pub full_frame: f64,
-    /// Median GPU seconds of a full frame's passes (shadows, shading, resolve), where the
-    /// adapter has timestamps.
+    /// Median GPU seconds of a full frame's passes (drawing, shadows, shading, resolve), where
+    /// the adapter has timestamps.
     pub full_gpu: Option<GpuSeconds>,
     /// Median seconds of each stage of a re-render after an absorption edit.
     pub rerender: Timings,
     /// Median wall seconds of a re-render, the edit's strand upload included.
     pub rerender_frame: f64,
-    /// Median GPU seconds of a re-render's passes, where the adapter has timestamps (`shadows`
-    /// 0: an edit does not re-run them).
+    /// Median GPU seconds of a re-render's passes, where the adapter has timestamps (`drawing`
+    /// and `shadows` 0: an edit does not re-run them).
     pub rerender_gpu: Option<GpuSeconds>,
 }
 
@@ -47,7 +47,7 @@ pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchRe
         let start = Instant::now();
         let (_, mut frame) = gpu.render(scene)?;
         full_frame.push(start.elapsed().as_secs_f64());
-        visible_points = frame.prepared().points.len();
+        visible_points = frame.visible_count();
         full.push(frame.timings());
         upload.push(frame.upload_seconds());
         full_gpu.extend(frame.gpu_seconds());
@@ -58,7 +58,11 @@ pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchRe
         rerender.push(frame.timings());
         gpu_times.extend(frame.gpu_seconds());
     }
-    let rerender_gpu = median_gpu(&gpu_times).map(|g| GpuSeconds { shadows: 0.0, ..g });
+    let rerender_gpu = median_gpu(&gpu_times).map(|g| GpuSeconds {
+        drawing: 0.0,
+        shadows: 0.0,
+        ..g
+    });
     Ok(GpuBenchReport {
         frames,
         visible_points,
@@ -75,6 +79,7 @@ pub fn run(gpu: &GpuRenderer, scene: &Scene, frames: usize) -> Result<GpuBenchRe
 fn median_gpu(runs: &[GpuSeconds]) -> Option<GpuSeconds> {
     let m = |f: fn(&GpuSeconds) -> f64| median(runs.iter().map(f).collect());
     (!runs.is_empty()).then(|| GpuSeconds {
+        drawing: m(|t| t.drawing),
         shadows: m(|t| t.shadows),
         shading: m(|t| t.shading),
         resolve: m(|t| t.resolve),

@@ -4,20 +4,24 @@
 //! buffers, the parameter tables and strand records last uploaded, and counts of what ran.
 
 use crate::buffers::Stopwatch;
+use crate::draw::Drawing;
 use crate::shading::ShadeParams;
 use crate::shadows::ShadowMaps;
 use crate::strands::{StrandParams, StrandSource};
+use cuticle_render::Timings;
 use cuticle_render::tables::back_scattering::BackScatteringTables;
 use cuticle_render::tables::lobe_table::LobeTable;
-use cuticle_render::{Prepared, Timings};
 use std::sync::Arc;
 
 /// How many times each stage ran on this frame, and how many uploads an edit caused: an edit
 /// of hair parameters must add shading and resolve passes only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct Passes {
-    /// Visibility-buffer drawings (on the CPU, for now).
+    /// Visibility-buffer drawings (stage 2, on the GPU).
     pub drawing: usize,
+    /// Compute dispatches of those drawings ([`crate::draw::STEPS`], `cover` twice, and the
+    /// prefix sums' steps).
+    pub drawing_steps: usize,
     /// Opacity-map builds with their shadows (stage 3, on the GPU).
     pub shadows: usize,
     /// Compute dispatches of those builds (up to five each: [`crate::shadows::STEPS`]).
@@ -58,6 +62,8 @@ impl Visibility {
 /// Seconds each pass took on the GPU by timestamp queries, where the adapter has them.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct GpuSeconds {
+    /// The drawing of the frame's prepare (first step to last).
+    pub drawing: f64,
     /// The opacity maps and shadows of the frame's prepare (first step to last).
     pub shadows: f64,
     pub shading: f64,
@@ -66,7 +72,12 @@ pub struct GpuSeconds {
 
 /// A frame ready to shade ([`crate::GpuRenderer::prepare`]).
 pub struct GpuFrame {
-    pub(crate) prepared: Prepared,
+    pub(crate) width: usize,
+    pub(crate) height: usize,
+    pub(crate) ss: usize,
+    /// Visible points: the first `visible` records of `drawing.visible`.
+    pub(crate) visible: usize,
+    pub(crate) drawing: Drawing,
     pub(crate) params: ShadeParams,
     pub(crate) params_buffer: wgpu::Buffer,
     pub(crate) lobes: Option<(Arc<LobeTable>, wgpu::Buffer)>,
@@ -76,7 +87,6 @@ pub struct GpuFrame {
     pub(crate) strands: Vec<StrandParams>,
     pub(crate) strand_source: StrandSource,
     pub(crate) strands_buffer: wgpu::Buffer,
-    pub(crate) points_buffer: wgpu::Buffer,
     pub(crate) shadows: ShadowMaps,
     pub(crate) lights_buffer: wgpu::Buffer,
     pub(crate) colours_buffer: wgpu::Buffer,
@@ -89,6 +99,7 @@ pub struct GpuFrame {
     pub(crate) timings: Timings,
     pub(crate) upload_seconds: f64,
     pub(crate) gpu_seconds: Option<GpuSeconds>,
+    pub(crate) draw_gpu_seconds: Option<f64>,
     pub(crate) shadow_gpu_seconds: Option<f64>,
 }
 
@@ -98,8 +109,9 @@ impl GpuFrame {
         self.passes
     }
 
-    /// Wall seconds of each stage of the last prepare and shade (drawing and shadows on the
-    /// CPU; shading and resolve each submitted and waited for, the resolve with its readback).
+    /// Wall seconds of each stage of the last prepare and shade, each submitted and waited for
+    /// (the drawing with the background computed on the CPU meanwhile and the visible count
+    /// read back; the resolve with its readback of the image).
     pub fn timings(&self) -> Timings {
         self.timings
     }
@@ -114,10 +126,9 @@ impl GpuFrame {
         self.gpu_seconds
     }
 
-    /// The CPU renderer's drawing this frame uploaded (visible points, lights, background; its
-    /// `shadow` is empty: the shadows are the GPU's, [`crate::GpuRenderer::shadows`]).
-    pub fn prepared(&self) -> &Prepared {
-        &self.prepared
+    /// The count of visible points the drawing found (shaded, and shadowed per light).
+    pub fn visible_count(&self) -> usize {
+        self.visible
     }
 
     /// The strand records as last written.

@@ -6,8 +6,9 @@
 //!    normalisation, the circular-Gaussian width table) uploaded once by [`GpuRenderer::new`];
 //!    the lobe table and back-scattering tables uploaded when a hair parameter rebuilds them
 //!    ([`tables`]);
-//! 2. drawing: the CPU renderer's visibility buffer ([`cuticle_render::Renderer::draw`]),
-//!    uploaded by [`GpuRenderer::prepare`] — not yet on the GPU;
+//! 2. drawing: strands rasterised into the supersampled visibility buffer and the visible
+//!    points listed, on the GPU ([`draw`], frame/raster.rs's rules); the background (the
+//!    environment through each pixel) on the CPU meanwhile;
 //! 3. shadows: deep opacity maps of every lit light, filtered to its bandwidth, and T̃ at every
 //!    visible point, on the GPU ([`shadows`]), into the buffer shading reads;
 //! 4. shading: one compute invocation per visible point ([`shading`]: single scattering, dual
@@ -40,9 +41,10 @@
 //! let painted = gpu.shade(&mut frame, &scene); // keeps painted strands while the scene's
 //!                                              // absorption (hair.mu_a, default_mu_a) stays
 //! let ids = gpu.visibility(&frame); // strand id per subsample, for picking strands to paint
-//!                                   // (from the CPU's visibility buffer while drawing is there)
+//!                                   // (read back from the GPU's visibility buffer)
 //! scene.camera.eye[0] += 1.0;
-//! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again, no uploads
+//! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again (the groom
+//!                                  // re-sent, no table or strand record)
 //! let moved = gpu.shade(&mut frame, &scene);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -57,6 +59,7 @@ pub mod bench;
 mod buffers;
 pub mod choice;
 pub mod device;
+pub mod draw;
 pub mod frame;
 pub mod renderer;
 pub mod resolve;

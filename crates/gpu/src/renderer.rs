@@ -3,13 +3,15 @@
 
 use crate::buffers::{self, Stopwatch};
 use crate::device::GpuDevice;
+use crate::draw::{self, DrawInputs, DrawPipelines, Drawing};
 use crate::frame::{GpuFrame, GpuSeconds, Passes, Visibility};
 use crate::resolve::{self, ResolveParams};
 use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
 use crate::shadows::{ShadowInputs, ShadowMaps, ShadowPipelines};
 use crate::strands::{self, StrandError, StrandParams, StrandSource};
 use crate::tables::{self, GridDesc, slot};
-use cuticle_render::frame::raster::EMPTY;
+use cuticle_render::frame::raster::{Coverage, EMPTY};
+use cuticle_render::frame::renderer::{background as frame_background, srbf_lights};
 use cuticle_render::scene::hair::caustic_bandwidth;
 use cuticle_render::tables::absorption_axis::SIGMA_SCALE;
 use cuticle_render::tables::spread::MIN_Z;
@@ -40,6 +42,7 @@ pub struct GpuRenderer {
     shade: wgpu::ComputePipeline,
     resolve: wgpu::ComputePipeline,
     shadows: ShadowPipelines,
+    draw: DrawPipelines,
 }
 
 impl GpuRenderer {
@@ -62,6 +65,7 @@ impl GpuRenderer {
             shade: shading::pipeline(device),
             resolve: resolve::pipeline(device),
             shadows: ShadowPipelines::new(device),
+            draw: DrawPipelines::new(device),
             gpu: gpu.clone(),
             cpu: cpu.clone(),
         }
@@ -71,9 +75,10 @@ impl GpuRenderer {
         &self.gpu
     }
 
-    /// Stages 2–3: drawing (by the CPU renderer for now) and its upload with the lights, the
-    /// background and every strand's record, then the opacity maps and shadows on the GPU
-    /// ([`crate::shadows`]).
+    /// Stages 2–3 on the GPU: drawing ([`crate::draw`]) into the visibility buffer and the
+    /// visible points' records, with the lights, the background (the environment through each
+    /// pixel, on the CPU while the GPU draws) and every strand's record uploaded, then the
+    /// opacity maps and shadows at the visible points ([`crate::shadows`]).
     pub fn prepare(&self, scene: &Scene) -> Result<GpuFrame, GpuError> {
         if scene.spec.method != Method::Srbf {
             return Err(GpuError::Method);
@@ -83,37 +88,53 @@ impl GpuRenderer {
             srbf_fit: scene.fit_seconds,
             ..Timings::default()
         };
-        let prepared = self.cpu.draw(scene, &mut timings);
+        let spec = &scene.spec;
         let start = Instant::now();
-        let cov = &prepared.coverage;
+        let view = scene.camera.view(spec.width, spec.height);
+        let inputs = DrawInputs {
+            groom: &scene.groom,
+            view: &view,
+            width: spec.width,
+            height: spec.height,
+            ss: spec.supersampling.max(1),
+        };
         let point_count = scene.groom.point_count();
-        let (layer_bytes, shadow_bytes) = ShadowMaps::sizes(
-            &prepared.lights,
-            scene.spec.shadows.resolution,
-            prepared.points.len(),
-        );
+        let (width, height) = (spec.width, spec.height);
+        self.check_sizes(&draw::sizes(&inputs))?;
         self.check_sizes(&[
-            ("the visibility buffer", cov.segment.len() * 8),
-            ("the opacity maps", layer_bytes),
-            ("the shadows", shadow_bytes),
             ("the point colours", point_count * 16),
-            ("the image", cov.width * cov.height * 16),
+            ("the image", width * height * 16),
         ])?;
         let device = &self.gpu.device;
-        let positions = scene.groom.positions();
-        let tangents = scene.groom.tangents();
-        let points: Vec<PointRecord> = prepared
-            .points
+        let drawing = Drawing::new(device, &self.draw, &inputs);
+        let draw_stopwatch = Stopwatch::new(device, &self.gpu.queue, 1);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let drawing_steps = drawing.encode(
+            &self.draw,
+            &mut encoder,
+            draw_stopwatch.as_ref().map(|s| (s.query_set(), 0)),
+        );
+        if let Some(s) = &draw_stopwatch {
+            s.resolve(&mut encoder);
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+        let background: Vec<[f32; 4]> = frame_background(scene, &view)
             .iter()
-            .map(|&p| PointRecord {
-                position: positions[p as usize].to_array(),
-                strand: prepared.strand_of_point[p as usize],
-                tangent: tangents[p as usize].to_array(),
-                index: p,
-            })
+            .map(|b| [b.x as f32, b.y as f32, b.z as f32, 1.0])
             .collect();
-        let lights: Vec<LightRecord> = prepared
-            .lights
+        let visible = drawing.read_count(device, &self.gpu.queue);
+        timings.drawing = start.elapsed().as_secs_f64();
+        let draw_gpu_seconds =
+            draw_stopwatch.map(|s| s.seconds(&self.gpu.device, &self.gpu.queue)[0]);
+        let start = Instant::now();
+        let world_lights = srbf_lights(scene);
+        let (layer_bytes, shadow_bytes) =
+            ShadowMaps::sizes(&world_lights, scene.spec.shadows.resolution, visible);
+        self.check_sizes(&[
+            ("the opacity maps", layer_bytes),
+            ("the shadows", shadow_bytes),
+        ])?;
+        let lights: Vec<LightRecord> = world_lights
             .iter()
             .map(|l| LightRecord {
                 direction: l.direction.as_vec3().to_array(),
@@ -122,21 +143,10 @@ impl GpuRenderer {
                 _pad: 0.0,
             })
             .collect();
-        let coverage: Vec<[u32; 2]> = cov
-            .segment
-            .iter()
-            .zip(&cov.t)
-            .map(|(&s, &t)| [s, t.to_bits()])
-            .collect();
-        let background: Vec<[f32; 4]> = prepared
-            .background
-            .iter()
-            .map(|b| [b.x as f32, b.y as f32, b.z as f32, 1.0])
-            .collect();
         let strand_records = strands::derive(scene);
         let mut params = ShadeParams {
-            eye: prepared.view.eye.as_vec3().to_array(),
-            visible: points.len() as u32,
+            eye: view.eye.as_vec3().to_array(),
+            visible: visible as u32,
             lights: lights.len() as u32,
             sigma_scale: SIGMA_SCALE as f32,
             min_z: MIN_Z as f32,
@@ -146,9 +156,7 @@ impl GpuRenderer {
         self.set_hair(&mut params, scene);
         let params_buffer = buffers::uniform(device, "shade params", bytemuck::bytes_of(&params));
         let colours_buffer = buffers::output(device, "point colours", point_count * 16);
-        let image_buffer = buffers::output(device, "image", cov.width * cov.height * 16);
-        let coverage_buffer =
-            buffers::storage(device, "visibility", bytemuck::cast_slice(&coverage), false);
+        let image_buffer = buffers::output(device, "image", width * height * 16);
         let background_buffer = buffers::storage(
             device,
             "background",
@@ -156,9 +164,9 @@ impl GpuRenderer {
             false,
         );
         let resolve_params = ResolveParams {
-            width: cov.width as u32,
-            height: cov.height as u32,
-            ss: cov.ss as u32,
+            width: width as u32,
+            height: height as u32,
+            ss: inputs.ss as u32,
             _pad: 0,
         };
         let resolve_params_buffer = buffers::uniform(
@@ -166,17 +174,15 @@ impl GpuRenderer {
             "resolve params",
             bytemuck::bytes_of(&resolve_params),
         );
-        let points_buffer =
-            buffers::storage(device, "points", bytemuck::cast_slice(&points), false);
         let shadows = ShadowMaps::new(
             device,
             &self.shadows,
             &ShadowInputs {
                 groom: &scene.groom,
-                lights: &prepared.lights,
+                lights: &world_lights,
                 options: &scene.spec.shadows,
-                points: &points_buffer,
-                point_count: points.len(),
+                points: &drawing.visible,
+                point_count: visible,
             },
         );
         let upload_seconds = start.elapsed().as_secs_f64();
@@ -203,7 +209,7 @@ impl GpuRenderer {
             "resolve",
             &[
                 &resolve_params_buffer,
-                &coverage_buffer,
+                &drawing.coverage,
                 &background_buffer,
                 &colours_buffer,
                 &image_buffer,
@@ -223,7 +229,11 @@ impl GpuRenderer {
             ),
             strands: strand_records,
             strand_source: StrandSource::of(scene),
-            points_buffer,
+            width,
+            height,
+            ss: inputs.ss,
+            visible,
+            drawing,
             shadows,
             lights_buffer: buffers::storage(device, "lights", bytemuck::cast_slice(&lights), false),
             colours_buffer,
@@ -233,6 +243,7 @@ impl GpuRenderer {
             stopwatch: Stopwatch::new(device, &self.gpu.queue, 2),
             passes: Passes {
                 drawing: 1,
+                drawing_steps,
                 shadows: 1,
                 shadow_steps,
                 strand_uploads: 1,
@@ -241,8 +252,8 @@ impl GpuRenderer {
             timings,
             upload_seconds: 0.0,
             gpu_seconds: None,
+            draw_gpu_seconds,
             shadow_gpu_seconds,
-            prepared,
         };
         frame.upload_seconds = upload_seconds + start.elapsed().as_secs_f64();
         Ok(frame)
@@ -257,6 +268,7 @@ impl GpuRenderer {
         let mut fresh = self.prepare(scene)?;
         let mut passes = frame.passes;
         passes.drawing += fresh.passes.drawing;
+        passes.drawing_steps += fresh.passes.drawing_steps;
         passes.shadows += fresh.passes.shadows;
         passes.shadow_steps += fresh.passes.shadow_steps;
         if fresh.strands.len() == frame.strands.len() && fresh.strand_source == frame.strand_source
@@ -343,7 +355,7 @@ impl GpuRenderer {
                     lobes,
                     back,
                     &frame.strands_buffer,
-                    &frame.points_buffer,
+                    &frame.drawing.visible,
                     &frame.shadows.shadow,
                     &frame.lights_buffer,
                     &frame.colours_buffer,
@@ -364,10 +376,7 @@ impl GpuRenderer {
         frame.passes.shading += 1;
         frame.timings.shading = start.elapsed().as_secs_f64();
         let start = Instant::now();
-        let (w, h) = (
-            frame.prepared.coverage.width,
-            frame.prepared.coverage.height,
-        );
+        let (w, h) = (frame.width, frame.height);
         let tiles = (
             (w as u32).div_ceil(resolve::TILE),
             (h as u32).div_ceil(resolve::TILE),
@@ -392,6 +401,7 @@ impl GpuRenderer {
         frame.gpu_seconds = stopwatch.map(|s| {
             let t = s.seconds(&self.gpu.device, &self.gpu.queue);
             GpuSeconds {
+                drawing: frame.draw_gpu_seconds.unwrap_or(0.0),
                 shadows: frame.shadow_gpu_seconds.unwrap_or(0.0),
                 shading: t[0],
                 resolve: t[1],
@@ -516,10 +526,43 @@ impl GpuRenderer {
         bytemuck::pod_collect_to_vec(&bytes)
     }
 
-    /// The strand seen at each subsample.
+    /// The visibility buffer as drawn on the GPU (the first point of the nearest segment and
+    /// t along it per subsample), read back.
+    pub fn coverage(&self, frame: &GpuFrame) -> Coverage {
+        let n = frame.width * frame.ss * frame.height * frame.ss;
+        let bytes = buffers::read(
+            &self.gpu.device,
+            &self.gpu.queue,
+            &frame.drawing.coverage,
+            n * 8,
+        );
+        let pairs: Vec<[u32; 2]> = bytemuck::pod_collect_to_vec(&bytes);
+        Coverage::from_parts(
+            frame.width,
+            frame.height,
+            frame.ss,
+            pairs.iter().map(|p| p[0]).collect(),
+            pairs.iter().map(|p| f32::from_bits(p[1])).collect(),
+        )
+    }
+
+    /// The visible points, ascending (the order of [`Self::shadows`]), read back.
+    pub fn visible_points(&self, frame: &GpuFrame) -> Vec<u32> {
+        let bytes = buffers::read(
+            &self.gpu.device,
+            &self.gpu.queue,
+            &frame.drawing.visible,
+            frame.visible * size_of::<PointRecord>(),
+        );
+        let records: Vec<PointRecord> = bytemuck::pod_collect_to_vec(&bytes);
+        records.iter().map(|r| r.index).collect()
+    }
+
+    /// The strand seen at each subsample (for picking strands to paint), read back from the
+    /// visibility buffer the GPU drew.
     pub fn visibility(&self, frame: &GpuFrame) -> Visibility {
-        let cov = &frame.prepared.coverage;
-        let of = &frame.prepared.strand_of_point;
+        let cov = self.coverage(frame);
+        let of = &frame.drawing.strand_of_point;
         Visibility {
             width: cov.width,
             height: cov.height,

@@ -1,11 +1,11 @@
 //! What an edit redoes on the GPU: a hair-parameter edit re-shades and resolves without
-//! redrawing or rebuilding shadows (counted passes), a camera move redraws and rebuilds the
-//! shadows and re-shades without re-uploading tables or strands, and re-uploading one strand's
+//! redrawing or rebuilding shadows (counted passes and their dispatches), a camera move
+//! redraws (the drawing's dispatches again) and rebuilds the shadows and re-shades without re-uploading tables or strands, and re-uploading one strand's
 //! parameters changes that strand's pixels and no other, as the CPU renderer paints it.
 
 mod common;
 
-use common::{cpu, device, gpu, hair_pixels, load, relative_rmse, spec};
+use common::{agreeing_pixels, cpu, device, gpu, load, relative_rmse, spec};
 use cuticle_gpu::{GpuRenderer, Passes, StrandError, StrandParams, Visibility};
 use cuticle_groom::Absorption;
 use cuticle_render::Renderer;
@@ -19,10 +19,14 @@ fn a_hair_edit_reshades_without_redrawing() {
     let mut frame = gpu.prepare(&scene).unwrap();
     let before = gpu.shade(&mut frame, &scene);
     let first = frame.passes();
+    // The drawing's steps (draw.wgsl's six entry points, `cover` twice) and at least one
+    // level of each of its two prefix sums (a scan and no add-back).
+    assert!(first.drawing_steps >= 9, "{first:?}");
     assert_eq!(
         first,
         Passes {
             drawing: 1,
+            drawing_steps: first.drawing_steps,
             shadows: 1,
             shadow_steps: 5,
             shading: 1,
@@ -36,8 +40,13 @@ fn a_hair_edit_reshades_without_redrawing() {
     let after = gpu.shade(&mut frame, &edited);
     let second = frame.passes();
     assert_eq!(
-        (second.drawing, second.shadows, second.shadow_steps),
-        (1, 1, 5),
+        (
+            second.drawing,
+            second.drawing_steps,
+            second.shadows,
+            second.shadow_steps
+        ),
+        (1, first.drawing_steps, 1, 5),
         "an edit redrew"
     );
     assert_eq!((second.shading, second.resolve), (2, 2));
@@ -57,6 +66,7 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
     let scene = load(spec(80, "default", 8));
     let mut frame = gpu.prepare(&scene).unwrap();
     let before = gpu.shade(&mut frame, &scene);
+    let steps = frame.passes().drawing_steps;
     let mut moved = scene.clone();
     let c = &mut moved.camera;
     let distance = glam::DVec3::from(c.eye).distance(glam::DVec3::from(c.target));
@@ -67,6 +77,7 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
         frame.passes(),
         Passes {
             drawing: 2,
+            drawing_steps: 2 * steps,
             shadows: 2,
             shadow_steps: 10,
             shading: 2,
@@ -141,8 +152,9 @@ fn updating_one_strand_changes_only_its_pixels() {
     // The CPU renderer with the strand's appearance painted the same way agrees.
     let mut painted = scene.clone();
     painted.groom.appearance_mut()[s].absorption = Some(Absorption::MuA(paint));
-    let (want, _, _) = cpu().render(&painted);
-    let e = relative_rmse(&after, &want, &hair_pixels(&vis));
+    let (want, prepared, _) = cpu().render(&painted);
+    let mask = agreeing_pixels(&gpu().coverage(&frame), &prepared.coverage);
+    let e = relative_rmse(&after, &want, &mask.hair);
     assert!(e < 5e-3, "painted strand against the CPU: {e}");
 }
 

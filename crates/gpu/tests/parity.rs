@@ -2,6 +2,12 @@
 //! at 240 × 160 with per-strand absorption, single scattering and with dual scattering, under
 //! the procedural sky and a real map, and an eccentric fiber.
 //!
+//! The images are compared where the two drawings agree (every subsample of the pixel keeps
+//! the same segment): the drawing is the GPU's own since issue 10's last step, and where it
+//! differs from the CPU's, at the few subsamples tests/drawing.rs bounds and measures, a pixel
+//! moves by a subsample's share of the difference between two strands, which is the drawing's
+//! error, not the shading's; at most 1 % of the hair pixels may be left out so.
+//!
 //! Bounds: relative RMSE over hair pixels below 5e-3 (the eccentric fiber: 1e-3, see its test)
 //! and no pixel channel off by more than 1e-2
 //! of the brightest (measured on lavapipe: RMSE 5e-5 to 1e-4, worst pixel 8e-5 to 1.5e-4). The
@@ -14,23 +20,25 @@
 
 mod common;
 
-use common::{cpu, gpu, hair_pixels, load, relative_rmse, shared_map, spec, worst_relative};
+use common::{agreeing_pixels, cpu, gpu, load, relative_rmse, shared_map, spec, worst_relative};
 use cuticle_render::Scene;
 
 /// Renders `scene` on both and returns the relative RMSE over hair pixels.
 fn compare(scene: &Scene, label: &str) -> f64 {
-    let (want, _, _) = cpu().render(scene);
+    let (want, prepared, _) = cpu().render(scene);
     let (got, frame) = gpu().render(scene).expect("GPU render");
-    let mask = hair_pixels(&gpu().visibility(&frame));
+    let mask = agreeing_pixels(&gpu().coverage(&frame), &prepared.coverage);
     assert!(
         got.pixels.iter().all(|p| p.is_finite()),
         "{label}: non-finite pixel"
     );
-    let e = relative_rmse(&got, &want, &mask);
-    let worst = worst_relative(&got, &want);
+    let e = relative_rmse(&got, &want, &mask.hair);
+    let worst = worst_relative(&got, &want, &mask.all);
     eprintln!(
-        "{label}: relative RMSE over {} hair pixels {e:.2e}, worst pixel {worst:.2e} of the brightest",
-        mask.iter().filter(|&&m| m).count(),
+        "{label}: relative RMSE over {} hair pixels {e:.2e}, worst pixel {worst:.2e} of the brightest \
+         ({} hair pixels left out: the drawings differ there)",
+        mask.hair.iter().filter(|&&m| m).count(),
+        mask.left_out,
     );
     assert!(worst < 1e-2, "{label}: worst pixel {worst}");
     e
@@ -138,10 +146,11 @@ fn degenerate_grooms_render() {
         s.width = 48;
         s.height = 32;
         let scene = Scene::from_parts(s, groom, base.env.clone(), base.lights.clone());
-        let (want, _, _) = cpu().render(&scene);
-        let (got, _) = gpu().render(&scene).unwrap();
+        let (want, prepared, _) = cpu().render(&scene);
+        let (got, frame) = gpu().render(&scene).unwrap();
         assert!(got.pixels.iter().all(|p| p.is_finite()), "{name}");
-        let worst = worst_relative(&got, &want);
+        let mask = agreeing_pixels(&gpu().coverage(&frame), &prepared.coverage);
+        let worst = worst_relative(&got, &want, &mask.all);
         assert!(worst < 1e-2, "{name}: {worst}");
     }
 }

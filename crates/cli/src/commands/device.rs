@@ -31,14 +31,16 @@ pub struct GpuRendered {
     pub device: Value,
 }
 
-/// The scene on the GPU: prepare (drawing by the CPU renderer, shadows on the GPU), shade, resolve.
+/// The scene on the GPU: prepare (drawing and shadows), shade, resolve, and the visibility
+/// buffer read back.
 pub fn render(device: &GpuDevice, cpu: &Renderer, scene: &Scene) -> Result<GpuRendered> {
     let gpu = GpuRenderer::new(device, cpu);
     let (image, frame) = gpu.render(scene)?;
+    let visibility = gpu.coverage(&frame);
     Ok(GpuRendered {
-        visible_points: frame.prepared().points.len(),
-        coverage: frame.prepared().coverage.covered_fraction(),
-        visibility: frame.prepared().coverage.clone(),
+        visible_points: frame.visible_count(),
+        coverage: visibility.covered_fraction(),
+        visibility,
         timings: frame.timings(),
         device: json!({
             "name": "gpu",
@@ -46,7 +48,7 @@ pub fn render(device: &GpuDevice, cpu: &Renderer, scene: &Scene) -> Result<GpuRe
             "passes": frame.passes(),
             "upload_seconds": frame.upload_seconds(),
             "gpu_seconds": frame.gpu_seconds(),
-            "stages_on_cpu": ["drawing"],
+            "stages_on_cpu": ["background"],
         }),
         image,
     })
@@ -71,7 +73,7 @@ pub fn bench(
 /// bench.json's `"seconds"` and `"device"` of a GPU run.
 pub fn bench_json(device: &GpuDevice, r: &GpuBenchReport) -> Value {
     json!({
-        "device": { "name": "gpu", "adapter": device.summary, "stages_on_cpu": ["drawing"] },
+        "device": { "name": "gpu", "adapter": device.summary, "stages_on_cpu": ["background"] },
         "frames": r.frames,
         "visible_points": r.visible_points,
         "seconds": {
@@ -99,13 +101,13 @@ pub fn print_bench(device: &GpuDevice, r: &GpuBenchReport) {
     let f = &r.full;
     let stamps = match (r.full_gpu, r.rerender_gpu) {
         (Some(f), Some(g)) => format!(
-            "GPU timestamps: full frame shadows {:.4} s, shading {:.4} s, resolve {:.4} s; re-render shading {:.4} s, resolve {:.4} s",
-            f.shadows, f.shading, f.resolve, g.shading, g.resolve
+            "GPU timestamps: full frame drawing {:.4} s, shadows {:.4} s, shading {:.4} s, resolve {:.4} s; re-render shading {:.4} s, resolve {:.4} s",
+            f.drawing, f.shadows, f.shading, f.resolve, g.shading, g.resolve
         ),
         _ => "no timestamp queries on this adapter".to_string(),
     };
     println!(
-        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3} on the CPU, upload {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); {}; {stamps}",
+        "{} ({}): median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, upload {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); {}; {stamps}",
         device.summary.name,
         device.summary.kind,
         r.frames,

@@ -4,6 +4,7 @@
 #![allow(dead_code)]
 
 use cuticle_gpu::{GpuDevice, GpuRenderer, Preference, Visibility};
+use cuticle_render::frame::raster::{Coverage, EMPTY};
 use cuticle_render::{Image, Renderer, Scene, SceneSpec, ShadowOptions};
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -80,6 +81,48 @@ pub fn hair_pixels(vis: &Visibility) -> Vec<bool> {
         .collect()
 }
 
+/// The pixels an image comparison reads: those whose subsamples keep the same segment in the
+/// GPU's drawing and the CPU's (where they differ, at the few subsamples tests/drawing.rs
+/// bounds, the images differ by the drawing, not by the shading these tests measure).
+pub struct Agreeing {
+    /// Per pixel: both drawings agree there.
+    pub all: Vec<bool>,
+    /// Per pixel: both agree and show hair.
+    pub hair: Vec<bool>,
+    /// Hair pixels left out because the drawings differ there.
+    pub left_out: usize,
+}
+
+pub fn agreeing_pixels(gpu: &Coverage, cpu: &Coverage) -> Agreeing {
+    assert_eq!(
+        gpu.segment.len(),
+        cpu.segment.len(),
+        "drawings of different sizes"
+    );
+    let (mut all, mut hair, mut left_out) = (Vec::new(), Vec::new(), 0);
+    for k in 0..gpu.width * gpu.height {
+        let (x, y) = (k % gpu.width, k / gpu.width);
+        let agree = gpu
+            .pixel_samples(x, y)
+            .all(|s| gpu.segment[s] == cpu.segment[s]);
+        let shows = gpu.pixel_samples(x, y).any(|s| gpu.segment[s] != EMPTY);
+        left_out += (shows && !agree) as usize;
+        all.push(agree);
+        hair.push(agree && shows);
+    }
+    let shown = hair.iter().filter(|&&h| h).count();
+    assert!(
+        left_out * 100 <= shown,
+        "the drawings differ at {left_out} of {} hair pixels",
+        shown + left_out
+    );
+    Agreeing {
+        all,
+        hair,
+        left_out,
+    }
+}
+
 /// √(Σ|a − b|² / Σ|b|²) over the pixels `mask` marks.
 pub fn relative_rmse(a: &Image, b: &Image, mask: &[bool]) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
@@ -96,14 +139,17 @@ pub fn relative_rmse(a: &Image, b: &Image, mask: &[bool]) -> f64 {
     (num / den).sqrt()
 }
 
-/// The largest |a − b| of a pixel channel relative to the brightest reference channel.
-pub fn worst_relative(a: &Image, b: &Image) -> f64 {
+/// The largest |a − b| of a pixel channel, over the pixels `mask` marks, relative to the
+/// brightest reference channel.
+pub fn worst_relative(a: &Image, b: &Image, mask: &[bool]) -> f64 {
     let brightest = b.pixels.iter().map(|p| p.max_element()).fold(0.0, f64::max);
     let worst = a
         .pixels
         .iter()
         .zip(&b.pixels)
-        .map(|(x, y)| (*x - *y).abs().max_element())
+        .zip(mask)
+        .filter(|(_, m)| **m)
+        .map(|((x, y), _)| (*x - *y).abs().max_element())
         .fold(0.0, f64::max);
     worst / brightest
 }

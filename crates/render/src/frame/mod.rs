@@ -15,3 +15,4 @@ pub mod progress;
 pub mod raster;
 pub mod renderer;
 pub mod shadow;
+pub mod sub_lights;

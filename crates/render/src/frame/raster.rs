@@ -33,6 +33,31 @@ pub struct Coverage {
 const BAND_ROWS: usize = 16;
 
 impl Coverage {
+    /// A visibility buffer drawn elsewhere (the GPU's): `segment` and `t` per subsample,
+    /// row-major over `width·ss × height·ss`.
+    pub fn from_parts(
+        width: usize,
+        height: usize,
+        ss: usize,
+        segment: Vec<u32>,
+        t: Vec<f32>,
+    ) -> Self {
+        assert_eq!(
+            segment.len(),
+            width * ss * height * ss,
+            "one segment per subsample"
+        );
+        assert_eq!(t.len(), segment.len(), "one t per subsample");
+        Self {
+            width,
+            height,
+            ss,
+            segment,
+            t,
+            depth: Vec::new(),
+        }
+    }
+
     fn sub_width(&self) -> usize {
         self.width * self.ss
     }

@@ -12,6 +12,7 @@ use crate::frame::fiber_frames::{frame_at, strand_of_points};
 use crate::frame::progress::{Counter, Progress};
 use crate::frame::raster::{Coverage, EMPTY, rasterize};
 use crate::frame::shadow::{ShadowOptions, transmittance};
+use crate::frame::sub_lights::split_wide;
 use crate::scene::camera::View;
 use crate::scene::{Lobes, Method, Scene, light_to_world};
 use crate::srbf::cg_lobes::TrtShape;
@@ -517,7 +518,7 @@ impl BruteFrame<'_> {
 /// T̃ of every light at every point (`[p * lights + j]`), with opacity maps built only for
 /// lights that carry light: a fitted map leaves some SRBF coefficients zero, and their T̃
 /// (left at 1) is never read.
-fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f32> {
+pub fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f32> {
     let lit: Vec<usize> = (0..lights.len())
         .filter(|&j| lights[j].radiance != DVec3::ZERO)
         .collect();
@@ -536,10 +537,9 @@ fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f
     out
 }
 
-/// The SRBF lights in world space.
-fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
-    scene
-        .lights
+/// The SRBF lights in world space, the wide ones split into sub-lights ([`crate::frame::sub_lights`]).
+pub fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
+    split_wide(&scene.lights, scene.spec.shadows.split_bandwidth)
         .iter()
         .map(|l| WorldLight {
             direction: light_to_world(l.centre()),
@@ -550,7 +550,7 @@ fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
 }
 
 /// The environment seen through each pixel centre.
-fn background(scene: &Scene, view: &View) -> Vec<DVec3> {
+pub fn background(scene: &Scene, view: &View) -> Vec<DVec3> {
     let (w, h) = (scene.spec.width, scene.spec.height);
     (0..w * h)
         .into_par_iter()

@@ -10,6 +10,7 @@
 //! so wide sky lights cost what a sun costs. Optical depth counts projected fiber area per texel
 //! area (a fiber blocks what it covers), T̃ = exp(−depth).
 
+use crate::frame::sub_lights::SPLIT_BANDWIDTH;
 use crate::scene::camera::NEAR;
 use cuticle_groom::Groom;
 use glam::DVec3;
@@ -28,6 +29,9 @@ pub struct ShadowOptions {
     /// than this fraction of what it gives an unshadowed point. 0 skips nothing. A quarter of
     /// the default scene's (point, light) pairs lie deep enough to fall below 1e-4.
     pub cutoff: f64,
+    /// Bandwidth λ_s of the sub-lights that replace every light wider than √2 λ_s, each with its
+    /// own map ([`crate::frame::sub_lights`]); from 20 up nothing is split (one map per light).
+    pub split_bandwidth: f64,
 }
 
 impl Default for ShadowOptions {
@@ -36,6 +40,7 @@ impl Default for ShadowOptions {
             resolution: 256,
             density: 1.0,
             cutoff: 1e-4,
+            split_bandwidth: SPLIT_BANDWIDTH,
         }
     }
 }

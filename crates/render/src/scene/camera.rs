@@ -24,12 +24,15 @@ pub struct Camera {
 #[derive(Clone, Copy, Debug)]
 pub struct View {
     pub eye: DVec3,
-    right: DVec3,
-    up: DVec3,
-    forward: DVec3,
-    focal: f64,
-    width: f64,
-    height: f64,
+    /// Unit vectors of the image's x axis, its upward y axis, and the view direction.
+    pub right: DVec3,
+    pub up: DVec3,
+    pub forward: DVec3,
+    /// Pixels per unit of tan(angle off the axis).
+    pub focal: f64,
+    /// The image size in pixels.
+    pub width: f64,
+    pub height: f64,
 }
 
 /// A projected point: pixel coordinates (x right, y down) and depth along the view axis.

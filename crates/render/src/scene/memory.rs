@@ -6,6 +6,7 @@
 //! allocator in `tests/memory.rs`): how many points are visible is known only after drawing, so
 //! the visible-point buffers count the least of the groom's points and two per subsample.
 
+use crate::frame::sub_lights::split_wide;
 use crate::scene::{Method, Scene, SceneSpec};
 use cuticle_fiber::marschner2003::MarschnerParams;
 use cuticle_groom::procedural::Preset;
@@ -182,7 +183,10 @@ impl Scene {
             &self.spec,
             self.groom.point_count() as u64,
             self.groom.strand_count() as u64,
-            light_count(&self.spec, self.lights.len()),
+            light_count(
+                &self.spec,
+                split_wide(&self.lights, self.spec.shadows.split_bandwidth).len(),
+            ),
             threads as u64,
             (self.env.width() * self.env.height()) as u64,
         )

@@ -221,6 +221,13 @@ pub const SHADOW_CUTOFF: Range = Range {
     max: End::Closed(0.01),
     unit: "",
 };
+/// Bandwidth of the sub-lights wide SRBF lights are split into (20 and up: none split).
+pub const SHADOW_SPLIT_BANDWIDTH: Range = Range {
+    name: "shadows.split_bandwidth",
+    min: End::Closed(0.25),
+    max: End::Closed(1000.0),
+    unit: "",
+};
 /// Rotation of the environment about the up axis, degrees.
 pub const ENV_ROTATE_DEG: Range = Range {
     name: "env_rotate_deg",
@@ -271,6 +278,7 @@ impl SceneSpec {
         SHADOW_RESOLUTION.check_usize(self.shadows.resolution)?;
         SHADOW_DENSITY.check(self.shadows.density)?;
         SHADOW_CUTOFF.check(self.shadows.cutoff)?;
+        SHADOW_SPLIT_BANDWIDTH.check(self.shadows.split_bandwidth)?;
         LIGHTS.check_usize(self.lights)?;
         if self.groom.parse::<Preset>().is_ok() {
             STRANDS.check_usize(self.strands)?;
