@@ -36,7 +36,7 @@ pub mod srbf;
 pub mod tables;
 
 pub use frame::progress::Progress;
-pub use frame::renderer::{Image, Prepared, Renderer, Timings, WorldLight};
+pub use frame::renderer::{Image, Prepared, Renderer, TableBuilds, Timings, WorldLight};
 pub use frame::shadow::ShadowOptions;
 pub use scene::camera::Camera;
 pub use scene::hair::HairParams;

@@ -1,7 +1,8 @@
 //! Latency of the window's CPU path, without a window: the worker as `cuticle view` drives it,
 //! on the default scene (or `--strands N --width W --height H`), timing from a request to its
 //! first frame (the preview) and to its full-quality frame, for edits of the hair (absorption,
-//! then β_R: shading only) and for camera moves (preparation again). Medians of `--edits K`.
+//! β_R) and paint strokes (shading only) and for camera moves (preparation again). Medians of
+//! `--edits K`, with the preparations the edits re-ran and the tables they rebuilt (counts).
 //!
 //! `cargo bench -p cuticle-view --bench latency -- --edits 5 [--device cpu|gpu|auto]` (the CPU
 //! renderer unless `--device` says otherwise).
@@ -28,11 +29,13 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Seconds from the request to its preview and to its full frame, and the preview's size.
+/// Seconds from the request to its preview and to its full frame, the preview's size, and how
+/// many of the two frames re-ran the preparation.
 struct Latency {
     preview: f64,
     full: f64,
     preview_size: (usize, usize),
+    prepared: usize,
 }
 
 fn main() {
@@ -76,23 +79,28 @@ fn main() {
             issued: Instant::now(),
         });
         let mut preview = None;
+        let mut prepared = 0;
         loop {
             let _ = rx.recv_timeout(Duration::from_secs(120));
             for r in worker.reports() {
                 match r {
-                    Report::Frame(f) if f.id == id => match f.quality {
-                        Quality::Preview => {
-                            preview = Some((f.latency_s, (f.image.width, f.image.height)))
+                    Report::Frame(f) if f.id == id => {
+                        prepared += usize::from(f.prepared);
+                        match f.quality {
+                            Quality::Preview => {
+                                preview = Some((f.latency_s, (f.image.width, f.image.height)))
+                            }
+                            Quality::Full => {
+                                let (p, size) = preview.expect("the preview comes first");
+                                return Latency {
+                                    preview: p,
+                                    full: f.latency_s,
+                                    preview_size: size,
+                                    prepared,
+                                };
+                            }
                         }
-                        Quality::Full => {
-                            let (p, size) = preview.expect("the preview comes first");
-                            return Latency {
-                                preview: p,
-                                full: f.latency_s,
-                                preview_size: size,
-                            };
-                        }
-                    },
+                    }
                     Report::Failed { message, .. } => panic!("{message}"),
                     _ => {}
                 }
@@ -107,20 +115,27 @@ fn main() {
         1e3 * first.full
     );
     let mut report = |name: &str, edit: &dyn Fn(&mut Look, usize)| {
-        let (mut p, mut f, mut size) = (Vec::new(), Vec::new(), (0, 0));
+        let (mut p, mut f, mut size, mut prepared) = (Vec::new(), Vec::new(), (0, 0), 0);
+        let builds = renderer.table_builds();
         for k in 0..edits {
             edit(&mut look, k);
             let l = run(&look);
             p.push(l.preview);
             f.push(l.full);
             size = l.preview_size;
+            prepared += l.prepared;
         }
+        let after = renderer.table_builds();
         println!(
-            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}), full-quality frame {:.0} ms",
+            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}), full-quality frame {:.0} ms; \
+             {prepared} of {} frames re-prepared, {} lobe-table and {} back-scattering builds",
             1e3 * median(p),
             size.0,
             size.1,
-            1e3 * median(f)
+            1e3 * median(f),
+            2 * edits,
+            after.lobes - builds.lobes,
+            after.back_scattering - builds.back_scattering,
         );
     };
     report("absorption edit", &|l, k| {
@@ -131,6 +146,16 @@ fn main() {
     });
     report("beta_R edit", &|l, k| {
         l.spec.hair.beta_r_deg = 5.0 + k as f64
+    });
+    report("paint stroke", &|l, k| {
+        // A tenth of the strands, as a wide stroke across the hair paints.
+        let n = l.paint.len();
+        for s in (k * n / 10)..((k + 1) * n / 10) {
+            l.paint[s] = Some(cuticle_groom::Absorption::Melanin {
+                eumelanin: 0.3,
+                pheomelanin: 1.0 + k as f32,
+            });
+        }
     });
     report("camera orbit", &|l, _| {
         let c = l.spec.camera.expect("a look has a camera");

@@ -7,7 +7,7 @@
 //!   what the pointer does on it ([`app::viewport`]), the status line ([`app::status`]).
 //! - [`look`]: the edited scene and its absorption layers (paint, all strands, the groom's own).
 //! - [`worker`]: the render thread: latest request only, preview then full quality, stale
-//!   frames cancelled.
+//!   frames cancelled; [`preview`]: what its quick first frame leaves out.
 //! - [`shading`]: the back-end trait the worker drives, and its CPU and GPU implementations.
 //! - [`jobs`]: background loads: the first scene, grooms, environment maps and SRBF re-fits.
 //! - [`paint`]: the brush, picking strands through the visibility buffer, undo history.
@@ -22,6 +22,7 @@ pub mod options;
 pub mod orbit;
 pub mod paint;
 pub mod presets;
+pub mod preview;
 pub mod save;
 pub mod shading;
 pub mod worker;

@@ -3,13 +3,15 @@
 //!
 //! - A request replaces any that is waiting (stale edits are never rendered) and cancels a
 //!   full-quality frame in progress.
-//! - Each request is shown first as a preview ([`Quality::Preview`]: fewer pixels, one subsample
-//!   each, sized so that shading takes about [`PREVIEW_BUDGET_S`]); a request made while input
+//! - Each request is shown first as a preview ([`Quality::Preview`], [`crate::preview`]: fewer
+//!   pixels, lights and quadrature segments, sized from the last preview that built no table so
+//!   that shading takes about [`crate::preview::PREVIEW_BUDGET_S`]); a request made while input
 //!   moves stops there, any other is refined to the full image when nothing newer waits.
 //! - Each quality keeps its own preparation and re-runs it only when the camera, image size,
 //!   groom geometry, lights or shadow settings change; any other edit re-runs shading only.
 
 use crate::look::Revisions;
+use crate::preview::{next_scale, preview_scene};
 use crate::shading::{Shading, StrandBuffer};
 use cuticle_render::{Camera, Image, Method, Scene, ShadowOptions};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -18,15 +20,10 @@ use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-/// Shading seconds a preview aims at (the first updated frame after an edit).
-pub const PREVIEW_BUDGET_S: f64 = 0.05;
-/// Largest reduction of the preview along each axis.
-pub const MAX_PREVIEW_SCALE: usize = 8;
-
 /// How a frame was made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quality {
-    /// Reduced resolution, one subsample per pixel.
+    /// Reduced resolution, one subsample per pixel, fewer lights ([`crate::preview`]).
     Preview,
     /// The scene's own resolution and supersampling.
     Full,
@@ -51,6 +48,8 @@ pub struct Frame {
     pub quality: Quality,
     pub image: Image,
     pub strands: Arc<StrandBuffer>,
+    /// Whether it re-ran the preparation (false when the kept one served).
+    pub prepared: bool,
     /// Seconds of the preparation it needed (0 when the kept one served).
     pub prepare_s: f64,
     /// Seconds of shading and resolve.
@@ -61,6 +60,9 @@ pub struct Frame {
     pub backend: String,
     /// Strand records its shading re-uploaded for paint (the GPU back end).
     pub strands_updated: usize,
+    /// Whole-groom shadow computations its back end has made so far (the CPU back end; see
+    /// [`Shading::shadow_passes`]).
+    pub shadow_passes: u64,
 }
 
 /// What the worker reports.
@@ -118,28 +120,20 @@ impl Slot {
         }
     }
 
-    /// Prepares `scene` unless the kept preparation serves; the seconds it took.
-    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> Result<f64, String> {
+    /// Prepares `scene` unless the kept preparation serves; the seconds it took, `None` when it
+    /// served.
+    fn prepare(&mut self, scene: &Scene, revisions: Revisions) -> Result<Option<f64>, String> {
         let key = PrepareKey::of(scene, revisions);
         if self.key.as_ref() == Some(&key) {
-            return Ok(0.0);
+            return Ok(None);
         }
         let start = Instant::now();
         self.key = None;
         self.shading.prepare(scene)?;
         self.strands = Arc::new(self.shading.strands());
         self.key = Some(key);
-        Ok(start.elapsed().as_secs_f64())
+        Ok(Some(start.elapsed().as_secs_f64()))
     }
-}
-
-/// The scene at preview quality: `scale` times fewer pixels along each axis, one subsample.
-pub fn preview_scene(scene: &Scene, scale: usize) -> Scene {
-    let mut s = scene.clone();
-    s.spec.width = scene.spec.width.div_ceil(scale).max(1);
-    s.spec.height = scene.spec.height.div_ceil(scale).max(1);
-    s.spec.supersampling = 1;
-    s
 }
 
 struct Mailbox {
@@ -282,6 +276,7 @@ impl Loop {
     fn serve(&mut self, request: &Request) {
         let preview = preview_scene(&request.scene, self.scale);
         let never = AtomicBool::new(false);
+        let builds = self.preview.shading.table_builds();
         match render(
             &mut self.preview,
             &preview,
@@ -290,7 +285,10 @@ impl Loop {
             &never,
         ) {
             Ok(Some(frame)) => {
-                self.adapt_scale(frame.shade_s);
+                // A table built on the way (a new η, β_R, ...) is no measure of shading.
+                if self.preview.shading.table_builds() == builds {
+                    self.scale = next_scale(self.scale, frame.shade_s);
+                }
                 self.send(Report::Frame(Box::new(frame)));
             }
             Ok(None) => {}
@@ -316,15 +314,6 @@ impl Loop {
     fn fail(&self, id: u64, message: String) {
         self.send(Report::Failed { id, message });
     }
-
-    /// Keeps the preview's shading near its budget by changing its size.
-    fn adapt_scale(&mut self, shade_s: f64) {
-        if shade_s > 1.6 * PREVIEW_BUDGET_S && self.scale < MAX_PREVIEW_SCALE {
-            self.scale += 1;
-        } else if shade_s < 0.3 * PREVIEW_BUDGET_S && self.scale > 1 {
-            self.scale -= 1;
-        }
-    }
 }
 
 /// One frame of `scene` by `slot`'s back end (`None` when cancelled).
@@ -345,10 +334,12 @@ fn render(
         quality,
         image,
         strands: slot.strands.clone(),
-        prepare_s,
+        prepared: prepare_s.is_some(),
+        prepare_s: prepare_s.unwrap_or(0.0),
         shade_s: start.elapsed().as_secs_f64(),
         latency_s: request.issued.elapsed().as_secs_f64(),
         backend: slot.shading.backend(),
         strands_updated: slot.shading.strands_updated(),
+        shadow_passes: slot.shading.shadow_passes(),
     }))
 }

@@ -80,6 +80,16 @@ pub struct WorldLight {
     pub radiance: DVec3,
 }
 
+/// How many times a [`Renderer`] (and its clones, which share the caches) built each table that
+/// a hair-parameter edit may rebuild.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TableBuilds {
+    /// [`LobeTable`]s (η or the caustic parameters changed).
+    pub lobes: u64,
+    /// [`BackScatteringTables`] (a parameter other than absorption changed).
+    pub back_scattering: u64,
+}
+
 /// The renderer: its tables, built once, and the lobe table of the last hair parameters.
 #[derive(Clone, Debug)]
 pub struct Renderer {
@@ -89,8 +99,9 @@ pub struct Renderer {
     pub table_seconds: f64,
     /// Rebuilt when η or the caustic parameters change (absorption is one of its axes).
     lobes: Arc<LastBuilt<(f64, TrtShape), LobeTable>>,
-    /// Rebuilt when any parameter but absorption (one of its axes) changes.
-    back: Arc<LastBuilt<(MarschnerParams, f64), BackScatteringTables>>,
+    /// Rebuilt when any parameter but absorption (one of its axes) changes; d_b only enters
+    /// after the lookup.
+    back: Arc<LastBuilt<MarschnerParams, BackScatteringTables>>,
 }
 
 impl Default for Renderer {
@@ -122,14 +133,29 @@ impl Renderer {
         })
     }
 
-    /// The back-scattering tables of `fiber`'s parameters but absorption, and `d_b`.
+    /// The builds so far of the tables kept across edits.
+    pub fn table_builds(&self) -> TableBuilds {
+        TableBuilds {
+            lobes: self.lobes.builds(),
+            back_scattering: self.back.builds(),
+        }
+    }
+
+    /// The back-scattering tables of `fiber`'s parameters but absorption, and `d_b` (which
+    /// changes no entry: a d_b edit reuses the built ones).
     pub fn back_scattering(&self, fiber: &MarschnerParams, d_b: f64) -> Arc<BackScatteringTables> {
         let key = MarschnerParams {
             mu_a: DVec3::ZERO,
             ..*fiber
         };
-        self.back
-            .get_or_build((key, d_b), || BackScatteringTables::build(fiber, d_b))
+        let built = self
+            .back
+            .get_or_build(key, || BackScatteringTables::build(fiber, d_b));
+        if built.d_b() == d_b {
+            built
+        } else {
+            Arc::new(built.with_d_b(d_b))
+        }
     }
 
     /// Whether this renderer renders `scene`'s method: [`Method::Path`] belongs to the path
@@ -150,9 +176,16 @@ impl Renderer {
     pub fn prepare(&self, scene: &Scene, timings: &mut Timings) -> Prepared {
         let mut prepared = self.draw(scene, timings);
         let start = Instant::now();
-        prepared.shadow = shadows_of_lit(scene, &prepared.points, &prepared.lights);
+        prepared.shadow = self.shadows(scene, &prepared.points, &prepared.lights);
         timings.shadows = start.elapsed().as_secs_f64();
         prepared
+    }
+
+    /// Stage 3: T̃ of each of `lights` at each of `points` (`[k * lights + j]` for `points[k]`),
+    /// a function of the groom, the lights and the shadow settings only, point by point: a
+    /// caller may keep it for every point across camera moves.
+    pub fn shadows(&self, scene: &Scene, points: &[u32], lights: &[WorldLight]) -> Vec<f32> {
+        shadows_of_lit(scene, points, lights)
     }
 
     /// Stage 2 and the frame's lights, with `shadow` left empty (the GPU renderer makes its

@@ -131,6 +131,14 @@ impl BackScatteringTables {
         Self { grid, d_b }
     }
 
+    /// The same tables with the averages formed for `d_b` (the entries do not depend on it).
+    pub fn with_d_b(&self, d_b: f64) -> Self {
+        Self {
+            grid: self.grid.clone(),
+            d_b,
+        }
+    }
+
     /// The averages at |θ_d| for one channel's μ_a.
     pub fn at(&self, theta_d: f64, mu_a: f64) -> Averages {
         self.at_coordinate(theta_d, absorption_axis::coordinate(mu_a))

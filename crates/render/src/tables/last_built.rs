@@ -1,16 +1,31 @@
 //! A one-entry cache for what a parameter edit may or may not invalidate: the renderer keeps
 //! the last lobe table and back-scattering tables with the parameters they were built for, and
-//! rebuilds them only when those change (an absorption edit changes neither).
+//! rebuilds them only when those change (an absorption edit changes neither). It counts its
+//! builds, so that a test can tell an edit that rebuilt from one that did not.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 
-/// The last value built and the key it was built for.
+/// The last value built and the key it was built for, and how many builds there were.
 #[derive(Debug)]
-pub struct LastBuilt<K, V>(Mutex<Option<(K, Arc<V>)>>);
+pub struct LastBuilt<K, V> {
+    last: Mutex<Option<(K, Arc<V>)>>,
+    builds: AtomicU64,
+}
 
 impl<K, V> Default for LastBuilt<K, V> {
     fn default() -> Self {
-        Self(Mutex::new(None))
+        Self {
+            last: Mutex::new(None),
+            builds: AtomicU64::new(0),
+        }
+    }
+}
+
+impl<K, V> LastBuilt<K, V> {
+    /// How many times a value was built.
+    pub fn builds(&self) -> u64 {
+        self.builds.load(Ordering::Relaxed)
     }
 }
 
@@ -18,10 +33,11 @@ impl<K: PartialEq, V> LastBuilt<K, V> {
     /// The value for `key`: the last one if it was built for an equal key, else `build()`'s,
     /// which replaces it.
     pub fn get_or_build(&self, key: K, build: impl FnOnce() -> V) -> Arc<V> {
-        let mut last = self.0.lock().unwrap_or_else(PoisonError::into_inner);
+        let mut last = self.last.lock().unwrap_or_else(PoisonError::into_inner);
         match &*last {
             Some((k, v)) if *k == key => v.clone(),
             _ => {
+                self.builds.fetch_add(1, Ordering::Relaxed);
                 let v = Arc::new(build());
                 *last = Some((key, v.clone()));
                 v
@@ -53,6 +69,6 @@ mod tests {
             builds += 1;
             "two"
         });
-        assert_eq!((*c, builds), ("two", 2));
+        assert_eq!((*c, builds, cache.builds()), ("two", 2, 2));
     }
 }

@@ -3,7 +3,8 @@
 //! alike; [`Backends::choose`] picks one for `--device auto|gpu|cpu`.
 //!
 //! - [`Shading::prepare`]: visibility, background and shadows for the scene's camera, groom and
-//!   lights (a camera move, a new groom or new lights re-run it);
+//!   lights (a camera move, a new groom or new lights re-run it; the CPU back end keeps the
+//!   shadows, which do not depend on the camera);
 //! - [`Shading::shade`]: L_o at the visible points for the scene's hair parameters and
 //!   per-strand absorption, resolved into pixels, on the kept preparation (an edit of the hair
 //!   or a paint stroke re-runs only this), given up when a newer edit makes it stale;
@@ -54,6 +55,17 @@ pub trait Shading: Send {
     /// Strand records the last shade re-uploaded for paint (a back end that keeps them on a
     /// device; 0 for one that reads the scene directly).
     fn strands_updated(&self) -> usize {
+        0
+    }
+    /// How many times this back end computed shadows for a whole groom and its lights (a
+    /// camera move alone needs none on a back end that keeps them); 0 for one that does not
+    /// count.
+    fn shadow_passes(&self) -> u64 {
+        0
+    }
+    /// How many shading tables (those a hair-parameter edit may rebuild) this back end's
+    /// renderer has built so far; 0 for one that does not count.
+    fn table_builds(&self) -> u64 {
         0
     }
 }
