@@ -13,7 +13,7 @@ use crate::tables::{self, GridDesc, slot};
 use cuticle_render::frame::raster::{Coverage, EMPTY};
 use cuticle_render::frame::renderer::{background as frame_background, srbf_lights};
 use cuticle_render::scene::hair::caustic_bandwidth;
-use cuticle_render::tables::absorption_axis::SIGMA_SCALE;
+use cuticle_render::tables::absorption_axis::MU_A_SCALE;
 use cuticle_render::tables::spread::MIN_Z;
 use cuticle_render::{Image, Method, Renderer, Scene, Timings};
 use glam::DVec3;
@@ -148,7 +148,7 @@ impl GpuRenderer {
             eye: view.eye.as_vec3().to_array(),
             visible: visible as u32,
             lights: lights.len() as u32,
-            sigma_scale: SIGMA_SCALE as f32,
+            mu_a_scale: MU_A_SCALE as f32,
             min_z: MIN_Z as f32,
             grids: self.static_grids,
             ..ShadeParams::default()

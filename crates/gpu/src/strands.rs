@@ -9,7 +9,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use cuticle_render::Scene;
-use cuticle_render::tables::absorption_axis::SIGMA_MAX;
+use cuticle_render::tables::absorption_axis::MU_A_MAX;
 
 /// One strand's record (16 bytes; the fourth float is spare).
 #[repr(C)]
@@ -76,12 +76,12 @@ pub fn check(first: usize, params: &[StrandParams], count: usize) -> Result<(), 
         if let Some(&value) = p
             .mu_a
             .iter()
-            .find(|v| !(v.is_finite() && (0.0..=SIGMA_MAX as f32).contains(*v)))
+            .find(|v| !(v.is_finite() && (0.0..=MU_A_MAX as f32).contains(*v)))
         {
             return Err(StrandError::BadAbsorption {
                 strand: first + k,
                 value,
-                max: SIGMA_MAX,
+                max: MU_A_MAX,
             });
         }
     }

@@ -43,7 +43,7 @@ struct Params {
     lights: u32,
     m: u32,
     multiple: u32,
-    sigma_scale: f32,
+    mu_a_scale: f32,
     min_z: f32,
     glint_scale: f32,
     caustic_limit: f32,

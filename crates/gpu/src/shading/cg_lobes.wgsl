@@ -115,7 +115,8 @@ fn cubic_phi(ab: vec2<f32>, gamma: f32) -> f32 {
 
 fn caustic(ep: f32, caustic_width: f32) -> Caustic {
     let ab = cubic_deflection(ep);
-    let g = sqrt(ab.x / (3.0 * ab.y));
+    // max(…, 0): no NaN where a ≤ 0 (η′ ≥ 2), which the test below rejects anyway.
+    let g = sqrt(max(ab.x, 0.0) / (3.0 * ab.y));
     if (ab.x > 0.0 && ab.y > 0.0 && g < HALF_PI && ep < 2.0) {
         let c = cos(g);
         let d2phi_dh2 = -6.0 * ab.y * g / (c * c);

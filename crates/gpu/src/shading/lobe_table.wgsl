@@ -12,7 +12,7 @@ struct FiberPoint {
 var<private> fiber: FiberPoint;
 
 fn absorption_coordinate(mu_a: f32) -> f32 {
-    return log(1.0 + max(mu_a, 0.0) / params.sigma_scale);
+    return log(1.0 + max(mu_a, 0.0) / params.mu_a_scale);
 }
 
 fn fiber_point(mu: vec3<f32>) -> FiberPoint {

@@ -53,7 +53,7 @@ pub struct ShadeParams {
     pub lights: u32,
     pub m: u32,
     pub multiple: u32,
-    pub sigma_scale: f32,
+    pub mu_a_scale: f32,
     pub min_z: f32,
     /// k_G and Δh_M of Marschner 2003's glints (the TRT fit's [`TrtShape`]).
     pub glint_scale: f32,

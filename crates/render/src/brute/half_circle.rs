@@ -20,7 +20,7 @@ use std::f64::consts::PI;
 /// Largest θ_d tabulated.
 const THETA_MAX: f64 = 1.5;
 const THETA_NODES: usize = 48;
-const SIGMA_NODES: usize = 64;
+const MU_A_NODES: usize = 64;
 const DELTA_NODES: usize = 49;
 /// Midpoint samples in h per mode.
 const H_SAMPLES: usize = 512;
@@ -58,25 +58,25 @@ pub fn half_average(p: u32, eta: f64, theta_d: f64, mu_a: f64, delta: f64) -> f6
 fn theta_row(eta: f64, theta_d: f64) -> Vec<f64> {
     let ep = eta_prime(eta, theta_d);
     let dh = 2.0 / H_SAMPLES as f64;
-    let sigmas: Vec<f64> = (0..SIGMA_NODES)
+    let mu_as: Vec<f64> = (0..MU_A_NODES)
         .map(|i| {
             sigma_prime(
-                absorption_axis::sigma(node(absorption_axis::max_coordinate(), SIGMA_NODES, i)),
+                absorption_axis::mu_a(node(absorption_axis::max_coordinate(), MU_A_NODES, i)),
                 eta,
                 theta_d,
             )
         })
         .collect();
-    let mut diff = vec![0.0; MODES * SIGMA_NODES * (DELTA_NODES + 1)];
+    let mut diff = vec![0.0; MODES * MU_A_NODES * (DELTA_NODES + 1)];
     for i in 0..H_SAMPLES {
         let h = -1.0 + (i as f64 + 0.5) * dh;
-        let through: Vec<f64> = sigmas.iter().map(|&s| transmittance(s, ep, h)).collect();
+        let through: Vec<f64> = mu_as.iter().map(|&s| transmittance(s, ep, h)).collect();
         for p in 0..MODES {
             let clear = 0.5 * attenuation(p as u32, eta, theta_d, 0.0, h) * dh / PI;
             let ranges = delta_ranges(wrap_pi(deflection(p as u32, h, ep)));
             for (k, t) in through.iter().enumerate() {
                 let share = clear * t.powi(p as i32);
-                let column = &mut diff[(p * SIGMA_NODES + k) * (DELTA_NODES + 1)..];
+                let column = &mut diff[(p * MU_A_NODES + k) * (DELTA_NODES + 1)..];
                 for &(first, last) in ranges.iter().flatten() {
                     column[first] += share;
                     column[last + 1] -= share;
@@ -129,7 +129,7 @@ impl ExactHalfCircle {
             .into_par_iter()
             .map(|i| theta_row(eta, node(THETA_MAX, THETA_NODES, i)))
             .collect();
-        let block = SIGMA_NODES * DELTA_NODES;
+        let block = MU_A_NODES * DELTA_NODES;
         let values = (0..MODES)
             .flat_map(|p| {
                 rows.iter()
@@ -144,7 +144,7 @@ impl ExactHalfCircle {
     pub fn column(mu_a: f64, delta: f64) -> Column {
         let (i, fx) = cell(
             absorption_axis::max_coordinate(),
-            SIGMA_NODES,
+            MU_A_NODES,
             absorption_axis::coordinate(mu_a),
         );
         let (j, fy) = cell(PI, DELTA_NODES, wrap_pi(delta).abs());
@@ -164,7 +164,7 @@ impl ExactHalfCircle {
     pub fn at(&self, p: usize, theta_d: f64, column: &Column) -> f64 {
         let (i, f) = cell(THETA_MAX, THETA_NODES, theta_d.abs());
         let row = |i: usize| {
-            let base = (p * THETA_NODES + i) * SIGMA_NODES * DELTA_NODES;
+            let base = (p * THETA_NODES + i) * MU_A_NODES * DELTA_NODES;
             (0..4)
                 .map(|k| column.weights[k] * self.values[base + column.offsets[k]])
                 .sum::<f64>()
@@ -230,7 +230,7 @@ mod tests {
         for &(i, k, j) in &[(10, 20, 7), (33, 5, 40), (2, 50, 24)] {
             let theta_d = node(THETA_MAX, THETA_NODES, i);
             let mu_a =
-                absorption_axis::sigma(node(absorption_axis::max_coordinate(), SIGMA_NODES, k));
+                absorption_axis::mu_a(node(absorption_axis::max_coordinate(), MU_A_NODES, k));
             let delta = node(PI, DELTA_NODES, j);
             let column = ExactHalfCircle::column(mu_a, delta);
             for p in 0..3 {

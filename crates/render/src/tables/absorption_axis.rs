@@ -4,23 +4,23 @@
 //! averages change fastest) and logarithmic beyond, so per-strand absorption needs no rebuild.
 
 /// Largest μ_a tabulated (the parameters' validated range).
-pub const SIGMA_MAX: f64 = 1000.0;
+pub const MU_A_MAX: f64 = 1000.0;
 /// The axis is linear below this μ_a and logarithmic above.
-pub const SIGMA_SCALE: f64 = 0.02;
+pub const MU_A_SCALE: f64 = 0.02;
 
 /// x of μ_a (negative μ_a reads 0).
 pub fn coordinate(mu_a: f64) -> f64 {
-    (mu_a.max(0.0) / SIGMA_SCALE).ln_1p()
+    (mu_a.max(0.0) / MU_A_SCALE).ln_1p()
 }
 
 /// μ_a of x, the inverse of [`coordinate`].
-pub fn sigma(x: f64) -> f64 {
-    SIGMA_SCALE * x.exp_m1()
+pub fn mu_a(x: f64) -> f64 {
+    MU_A_SCALE * x.exp_m1()
 }
 
-/// x of [`SIGMA_MAX`], the axis' end.
+/// x of [`MU_A_MAX`], the axis' end.
 pub fn max_coordinate() -> f64 {
-    coordinate(SIGMA_MAX)
+    coordinate(MU_A_MAX)
 }
 
 #[cfg(test)]
@@ -32,8 +32,8 @@ mod tests {
     fn coordinate_and_sigma_invert_each_other() {
         assert_eq!(coordinate(0.0), 0.0);
         for &s in &[0.0, 0.01, 0.3, 7.0, 1000.0] {
-            assert!((sigma(coordinate(s)) - s).abs() <= 1e-12 * s.max(1.0));
+            assert!((mu_a(coordinate(s)) - s).abs() <= 1e-12 * s.max(1.0));
         }
-        assert!((sigma(max_coordinate()) - SIGMA_MAX).abs() < 1e-9);
+        assert!((mu_a(max_coordinate()) - MU_A_MAX).abs() < 1e-9);
     }
 }

@@ -126,7 +126,7 @@ impl BackScatteringTables {
         let grid = Grid2::build(
             (NODES, 0.0, THETA_MAX),
             (NODES, 0.0, absorption_axis::max_coordinate()),
-            |theta_d, x| entry(fiber, theta_d, absorption_axis::sigma(x)),
+            |theta_d, x| entry(fiber, theta_d, absorption_axis::mu_a(x)),
         );
         Self { grid, d_b }
     }

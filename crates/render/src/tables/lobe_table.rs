@@ -130,7 +130,7 @@ const THETA_D_NODES: usize = 512;
 /// Largest |θ_d| tabulated; cos θ_d is then 0.01 and the integrand's cos²θ_i nearly zero.
 const THETA_D_MAX: f64 = 1.56;
 /// Nodes over the [`absorption_axis`].
-const SIGMA_NODES: usize = 256;
+const MU_A_NODES: usize = 256;
 
 /// The lobes of one colour channel, fitted at every node of (|θ_d|, ln(1 + μ_a/0.02)) for a
 /// fiber's η and TRT shape: per-strand absorption (every strand of a preset groom differs) and
@@ -156,9 +156,9 @@ impl LobeTable {
         let eta = fiber.eta;
         let axes = (
             (THETA_D_NODES, 0.0, THETA_D_MAX),
-            (SIGMA_NODES, 0.0, absorption_axis::max_coordinate()),
+            (MU_A_NODES, 0.0, absorption_axis::max_coordinate()),
         );
-        let fit = |td: f64, x: f64| (Geometry::new(tables, eta, td), absorption_axis::sigma(x));
+        let fit = |td: f64, x: f64| (Geometry::new(tables, eta, td), absorption_axis::mu_a(x));
         let tt = Grid2::build(axes.0, axes.1, |td, x| {
             let (g, mu_a) = fit(td, x);
             let tt = tt_fit(&g, mu_a);

@@ -13,7 +13,7 @@ use cuticle_fiber::special::GaussLegendre;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Largest deviation σ tabulated; wider spreads read the edge.
-const SIGMA_MAX: f64 = 4.0;
+const MU_A_MAX: f64 = 4.0;
 /// Nodes along each axis.
 const NODES: usize = 129;
 /// Smallest Z returned (the narrow limit's old floor on cos θ_j).
@@ -36,7 +36,7 @@ impl SpreadNormalisation {
         Self {
             grid: Grid2::build(
                 (NODES, 0.0, FRAC_PI_2),
-                (NODES, 0.0, SIGMA_MAX),
+                (NODES, 0.0, MU_A_MAX),
                 |mu, sigma| [exact(mu, sigma)],
             ),
         }
