@@ -1,10 +1,49 @@
 //! Small wgpu helpers: storage buffers that are never empty (a binding must have a size),
-//! readback, and the timestamp queries of one frame's passes.
+//! compute pipelines and bind groups, readback, and the timestamp queries of one frame's passes.
 
 use wgpu::util::DeviceExt;
 
 /// The smallest buffer made: a binding needs at least one element of any record here.
 const MIN_BYTES: usize = 64;
+
+/// The compute pipeline of `module`'s entry point `entry`, its bind group layout inferred from
+/// the shader.
+pub fn compute_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+) -> wgpu::ComputePipeline {
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: None,
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// A bind group of `buffers` at bindings 0, 1, … of `layout`.
+pub fn bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    label: &str,
+    buffers: &[&wgpu::Buffer],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry> = buffers
+        .iter()
+        .enumerate()
+        .map(|(k, b)| wgpu::BindGroupEntry {
+            binding: k as u32,
+            resource: b.as_entire_binding(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
 
 /// A storage buffer holding `bytes` (zero-padded to [`MIN_BYTES`]).
 pub fn storage(device: &wgpu::Device, label: &str, bytes: &[u8], writable: bool) -> wgpu::Buffer {

@@ -203,9 +203,9 @@ impl GpuRenderer {
         let shadow_gpu_seconds =
             shadow_stopwatch.map(|s| s.seconds(&self.gpu.device, &self.gpu.queue)[0]);
         let start = Instant::now();
-        let resolve_group = bind_group(
+        let resolve_group = buffers::bind_group(
             device,
-            &self.resolve,
+            &self.resolve.get_bind_group_layout(0),
             "resolve",
             &[
                 &resolve_params_buffer,
@@ -345,9 +345,9 @@ impl GpuRenderer {
         let group = frame.shade_group.get_or_insert_with(|| {
             let lobes = &frame.lobes.as_ref().expect("uploaded").1;
             let back = frame.back.as_ref().map_or(&frame.no_back, |b| &b.1);
-            bind_group(
+            buffers::bind_group(
                 &self.gpu.device,
-                &self.shade,
+                &self.shade.get_bind_group_layout(0),
                 "shade",
                 &[
                     &frame.params_buffer,
@@ -587,26 +587,4 @@ impl GpuRenderer {
         let image = self.shade(&mut frame, scene);
         Ok((image, frame))
     }
-}
-
-/// A bind group of `buffers` at bindings 0, 1, … of `pipeline`'s group 0.
-fn bind_group(
-    device: &wgpu::Device,
-    pipeline: &wgpu::ComputePipeline,
-    label: &str,
-    buffers: &[&wgpu::Buffer],
-) -> wgpu::BindGroup {
-    let entries: Vec<wgpu::BindGroupEntry> = buffers
-        .iter()
-        .enumerate()
-        .map(|(k, b)| wgpu::BindGroupEntry {
-            binding: k as u32,
-            resource: b.as_entire_binding(),
-        })
-        .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some(label),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &entries,
-    })
 }

@@ -77,16 +77,7 @@ impl DrawPipelines {
         });
         let steps = STEPS
             .iter()
-            .map(|entry| {
-                device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
-            })
+            .map(|entry| buffers::compute_pipeline(device, &module, entry))
             .collect();
         Self {
             steps,

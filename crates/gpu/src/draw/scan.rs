@@ -27,16 +27,7 @@ impl ScanPipelines {
             label: Some("scan"),
             source: wgpu::ShaderSource::Wgsl(include_str!("scan.wgsl").into()),
         });
-        let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: None,
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
+        let pipeline = |entry: &str| buffers::compute_pipeline(device, &module, entry);
         Self {
             blocks: pipeline("scan_blocks"),
             add: pipeline("add_sums"),
@@ -74,24 +65,12 @@ impl Scan {
             };
             let uniform = buffers::uniform(device, "scan params", bytemuck::bytes_of(&params));
             let group = |pipeline: &wgpu::ComputePipeline| {
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("scan"),
-                    layout: &pipeline.get_bind_group_layout(0),
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: uniform.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: data.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: sums.as_entire_binding(),
-                        },
-                    ],
-                })
+                buffers::bind_group(
+                    device,
+                    &pipeline.get_bind_group_layout(0),
+                    "scan",
+                    &[&uniform, &data, &sums],
+                )
             };
             levels.push(Level {
                 groups: fold(blocks),

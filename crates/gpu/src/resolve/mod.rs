@@ -22,12 +22,5 @@ pub fn pipeline(device: &wgpu::Device) -> wgpu::ComputePipeline {
         label: Some("resolve"),
         source: wgpu::ShaderSource::Wgsl(include_str!("resolve.wgsl").into()),
     });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("resolve"),
-        layout: None,
-        module: &module,
-        entry_point: Some("resolve"),
-        compilation_options: Default::default(),
-        cache: None,
-    })
+    crate::buffers::compute_pipeline(device, &module, "resolve")
 }

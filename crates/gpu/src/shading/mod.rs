@@ -89,14 +89,7 @@ pub fn pipeline(device: &wgpu::Device) -> wgpu::ComputePipeline {
         label: Some("shade"),
         source: wgpu::ShaderSource::Wgsl((kept_rule() + &SOURCE.concat()).into()),
     });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("shade"),
-        layout: None,
-        module: &module,
-        entry_point: Some("shade"),
-        compilation_options: Default::default(),
-        cache: None,
-    })
+    crate::buffers::compute_pipeline(device, &module, "shade")
 }
 
 /// cg_lobes.wgsl's constants of the caustic moments' quadrature: cg_lobes.rs's panels and its

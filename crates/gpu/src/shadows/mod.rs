@@ -225,19 +225,7 @@ impl ShadowMaps {
             &shadow,
             &map_of_light_buffer,
         ];
-        let entries: Vec<wgpu::BindGroupEntry> = bound
-            .iter()
-            .enumerate()
-            .map(|(k, b)| wgpu::BindGroupEntry {
-                binding: k as u32,
-                resource: b.as_entire_binding(),
-            })
-            .collect();
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("opacity maps"),
-            layout: &pipelines.layout,
-            entries: &entries,
-        });
+        let group = buffers::bind_group(device, &pipelines.layout, "opacity maps", &bound);
         Self {
             params,
             group,
