@@ -721,6 +721,7 @@ fn the_path_tracer_writes_a_finite_set() {
     assert_eq!(
         names(&out),
         [
+            "coverage.exr",
             "image.exr",
             "image.png",
             "render.json",

@@ -43,6 +43,7 @@
 use crate::accel::Accel;
 use crate::env_sampling::EnvSampler;
 use crate::models::StrandModels;
+use crate::tubes::TubeHit;
 use cuticle_fiber::{FiberFrame, FiberModel};
 use cuticle_light::EnvMap;
 use cuticle_render::scene::{light_to_world, world_to_light};
@@ -82,6 +83,16 @@ impl Default for PathOptions {
     }
 }
 
+/// One camera ray's path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSample {
+    pub radiance: DVec3,
+    /// Rays traced, the camera ray included.
+    pub rays: u64,
+    /// Whether the camera ray met hair (the pixel's coverage, averaged over its samples).
+    pub hit: bool,
+}
+
 /// What a path reads: geometry, light and the fibers.
 pub struct World<'a> {
     pub accel: &'a Accel,
@@ -113,10 +124,43 @@ impl World<'_> {
         options: &PathOptions,
         rng: &mut Pcg64Mcg,
     ) -> (DVec3, u64) {
-        let mut rays = 1u64;
-        let Some(mut hit) = self.accel.closest(origin, dir) else {
-            return (self.env_radiance(dir), rays);
+        let s = self.camera_sample(origin, dir, options, rng);
+        (s.radiance, s.rays)
+    }
+
+    /// [`Self::radiance`], and whether the camera ray met hair.
+    pub fn camera_sample(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        options: &PathOptions,
+        rng: &mut Pcg64Mcg,
+    ) -> CameraSample {
+        let Some(hit) = self.accel.closest(origin, dir) else {
+            return CameraSample {
+                radiance: self.env_radiance(dir),
+                rays: 1,
+                hit: false,
+            };
         };
+        let (radiance, rays) = self.from_hair(hit, origin, dir, options, rng);
+        CameraSample {
+            radiance,
+            rays: rays + 1,
+            hit: true,
+        }
+    }
+
+    /// The radiance leaving the hair at `hit` toward `origin`, and the rays traced after it.
+    fn from_hair(
+        &self,
+        mut hit: TubeHit,
+        origin: DVec3,
+        dir: DVec3,
+        options: &PathOptions,
+        rng: &mut Pcg64Mcg,
+    ) -> (DVec3, u64) {
+        let mut rays = 0u64;
         let (mut origin, mut dir) = (origin, dir);
         let mut throughput = DVec3::ONE;
         let mut radiance = DVec3::ZERO;

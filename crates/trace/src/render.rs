@@ -40,6 +40,8 @@ pub struct TraceImage {
     pub image: Image,
     /// Per pixel and channel: the standard error of the mean.
     pub standard_error: Vec<DVec3>,
+    /// Per pixel: the fraction of its camera rays that met hair (`cuticle compare`'s mask).
+    pub coverage: Vec<f64>,
     pub spp: u32,
     pub stats: TraceStats,
 }
@@ -73,6 +75,7 @@ impl TraceStats {
 struct Accumulator {
     sum: DVec3,
     sum_sq: DVec3,
+    hits: u32,
 }
 
 /// Renders `scene` with `models`, calling `progress(samples per pixel done, total)` after each
@@ -121,10 +124,11 @@ pub fn render_with(
                         crate::path::uniform(&mut rng),
                     );
                     let dir = view.ray(x as f64 + jx, y as f64 + jy);
-                    let (l, n) = world.radiance(view.eye, dir, &options.path, &mut rng);
-                    a.sum += l;
-                    a.sum_sq += l * l;
-                    rays += n;
+                    let s = world.camera_sample(view.eye, dir, &options.path, &mut rng);
+                    a.sum += s.radiance;
+                    a.sum_sq += s.radiance * s.radiance;
+                    a.hits += u32::from(s.hit);
+                    rays += s.rays;
                 }
                 rays
             })
@@ -151,6 +155,7 @@ pub fn render_with(
     TraceImage {
         image,
         standard_error,
+        coverage: acc.iter().map(|a| a.hits as f64 / n).collect(),
         spp: options.spp,
         stats: TraceStats {
             rays,

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{constant_env, front_camera, scene, slab, spot_env};
+use common::{constant_env, front_camera, scene, single_fiber, slab, spot_env};
 use cuticle_groom::{Groom, GroomParts};
 use cuticle_light::EnvMap;
 use cuticle_render::scene::world_to_light;
@@ -74,4 +74,32 @@ fn degenerate_input_renders_without_a_panic() {
     let out = trace(&scene(slab(2, 8, 0.1), black, 8, 4, front_camera(8.0)), 2);
     assert!(out.image.pixels.iter().all(|p| *p == DVec3::ZERO));
     assert!(out.standard_error.iter().all(|e| e.is_finite()));
+}
+
+/// The coverage a render reports is the tubes' own: one fiber of diameter 0.2 at distance 10,
+/// across an image whose pixels are 0.55 of it tall, covers 0.2 / pixel height per column in
+/// sum (to the sampling noise of 64 spp), and nothing two pixels off it.
+#[test]
+fn coverage_is_the_fibers_projected_width() {
+    let camera = front_camera(20.0);
+    let (w, h) = (6, 32);
+    let s = scene(single_fiber(), constant_env(1.0), w, h, camera);
+    let traced = trace(&s, 64);
+    let pixel = 10.0 / s.camera.view(w, h).focal;
+    assert!(pixel > 0.2 / 2.0 && pixel < 0.2, "pixel {pixel}");
+    for x in 0..w {
+        let column: Vec<f64> = (0..h).map(|y| traced.coverage[y * w + x]).collect();
+        let sum: f64 = column.iter().sum();
+        assert!(
+            (sum * pixel / 0.2 - 1.0).abs() < 0.05,
+            "column {x}: {sum} pixels of coverage, {} expected",
+            0.2 / pixel
+        );
+        assert!(
+            column[..h / 2 - 3]
+                .iter()
+                .chain(&column[h / 2 + 3..])
+                .all(|&c| c == 0.0)
+        );
+    }
 }

@@ -6,10 +6,12 @@
 //! by its render for the same map, so the two share an exposure).
 //!
 //! Hair pixels are those whose coverage is at least `--min-coverage` (default 1: fully covered,
-//! so no background mixes in), read from `coverage.exr` in A's folder, else B's (the path tracer
-//! writes none; the SRBF and brute renders of the same scene draw the same strands), else
-//! `--coverage FILE`. With `--minus A0/ B0/`, A − A0 is compared against B − B0: multiple
-//! scattering as a full render minus a direct one.
+//! so no background mixes in) in every coverage given: `coverage.exr` of A's folder, of B's, and
+//! `--coverage FILE`, whichever exist (at least one). Both sides' masks count because they differ
+//! where hair is thin: the SRBF and brute renders draw a fiber at least a subsample wide, the
+//! path tracer's coverage (the fraction of its camera rays that meet a tube) is the tubes' true
+//! one, so a pixel one calls full may show the background in the other. With `--minus A0/ B0/`,
+//! A − A0 is compared against B − B0: multiple scattering as a full render minus a direct one.
 
 use crate::output::OutDir;
 use anyhow::{Context, Result, bail};
@@ -27,7 +29,7 @@ pub struct Args {
     /// Folders of the renders subtracted from A and from B (e.g. their direct light).
     #[arg(long, num_args = 2, value_names = ["A0", "B0"])]
     pub minus: Option<Vec<PathBuf>>,
-    /// Coverage EXR to take the hair mask from, when neither folder has coverage.exr.
+    /// A further coverage EXR the hair pixels must fill (with the folders' coverage.exr).
     #[arg(long)]
     pub coverage: Option<PathBuf>,
     /// Smallest coverage of a hair pixel, in (0, 1].
@@ -71,12 +73,19 @@ pub fn run(args: Args) -> Result<()> {
         a = difference(&a, &Render::open(&minus[0])?.image("image.exr")?)?;
         b = difference(&b, &Render::open(&minus[1])?.image("image.exr")?)?;
     }
-    let coverage_path = [&render_a, &render_b]
+    let coverage_paths: Vec<PathBuf> = [&render_a, &render_b]
         .into_iter()
-        .find_map(|r| r.path("coverage.exr"))
-        .or(args.coverage.clone())
-        .context("no coverage.exr in either render; give --coverage FILE")?;
-    let coverage = read_image(&coverage_path)?;
+        .filter_map(|r| r.path("coverage.exr"))
+        .chain(args.coverage.clone())
+        .collect();
+    if coverage_paths.is_empty() {
+        bail!("no coverage.exr in either render; give --coverage FILE");
+    }
+    let coverages = coverage_paths
+        .iter()
+        .map(|p| read_image(p))
+        .collect::<Result<Vec<_>>>()?;
+    let coverage = least_coverage(&coverages)?;
     let result = compare(&a, &b, &coverage, args.min_coverage)?;
     let side_by_side = side_by_side(&render_a, &render_b)?;
     print_region("hair", &result.hair);
@@ -86,7 +95,7 @@ pub fn run(args: Args) -> Result<()> {
         "a": args.a,
         "b": args.b,
         "minus": args.minus,
-        "coverage": coverage_path,
+        "coverage": coverage_paths,
         "min_coverage": args.min_coverage,
         "hair": result.hair,
         "bottom_fifth": result.bottom_fifth,
@@ -234,6 +243,26 @@ fn region(a: &Image, b: &Image, pixels: &[usize]) -> Result<RegionStats> {
     })
 }
 
+/// Per pixel, the least of the coverages (one size, at least one).
+fn least_coverage(coverages: &[Image]) -> Result<Image> {
+    let mut least = coverages[0].clone();
+    for c in &coverages[1..] {
+        if (c.width, c.height) != (least.width, least.height) {
+            bail!(
+                "coverages of {}x{} and {}x{} pixels",
+                least.width,
+                least.height,
+                c.width,
+                c.height
+            );
+        }
+        for (l, v) in least.pixels.iter_mut().zip(&c.pixels) {
+            *l = l.min(*v);
+        }
+    }
+    Ok(least)
+}
+
 fn difference(x: &Image, y: &Image) -> Result<Image> {
     if (x.width, x.height) != (y.width, y.height) {
         bail!(
@@ -316,6 +345,18 @@ mod tests {
         );
         // A lower threshold lets the half-covered background in.
         assert_eq!(compare(&a, &b, &coverage, 0.5).unwrap().hair.pixels, 56);
+    }
+
+    /// The mask is the least of the coverages: a pixel full in one and partial in the other
+    /// is not hair; coverages of two sizes are an error.
+    #[test]
+    fn the_mask_is_the_least_coverage() {
+        let a = image(3, 1, |x, _| DVec3::splat([1.0, 1.0, 0.4][x]));
+        let b = image(3, 1, |x, _| DVec3::splat([1.0, 0.75, 1.0][x]));
+        let least = least_coverage(&[a.clone(), b]).unwrap();
+        let first: Vec<f64> = least.pixels.iter().map(|p| p.x).collect();
+        assert_eq!(first, [1.0, 0.75, 0.4]);
+        assert!(least_coverage(&[a, image(2, 1, |_, _| DVec3::ONE)]).is_err());
     }
 
     /// Images of different sizes, or a mask with no hair, are one clear error each.

@@ -212,6 +212,7 @@ pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
     out_dir.write("image.png", &traced.image.png_bytes(tone)?)?;
     out_dir.write("image.exr", &traced.image.exr_bytes()?)?;
     out_dir.write("standard_error.exr", &standard_error_exr(&traced)?)?;
+    out_dir.write("coverage.exr", &coverage_exr(&traced)?)?;
     out_dir.finish(record(&scene, params, &traced)?)?;
     let s = &traced.stats;
     println!(
@@ -268,6 +269,17 @@ fn standard_error_exr(t: &TraceImage) -> Result<Vec<u8>> {
         pixels: t.standard_error.clone(),
     };
     Ok(error.exr_bytes()?)
+}
+
+/// Each pixel's coverage (the fraction of its camera rays that met hair) in all three channels,
+/// as the SRBF renderer's coverage.exr.
+fn coverage_exr(t: &TraceImage) -> Result<Vec<u8>> {
+    let coverage = Image {
+        width: t.image.width,
+        height: t.image.height,
+        pixels: t.coverage.iter().map(|&c| DVec3::splat(c)).collect(),
+    };
+    Ok(coverage.exr_bytes()?)
 }
 
 /// `cuticle bench trace`'s flags.
