@@ -103,10 +103,11 @@ pub fn run(args: Args) -> Result<()> {
     let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
     eprintln!(
-        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}, on {}",
+        "rendering {} strands ({} points) under {} SRBF lights ({} shaded) at {}x{}, method {:?}, on {}",
         scene.groom.strand_count(),
         scene.groom.point_count(),
         scene.lights.len(),
+        scene.shaded_lights(),
         scene.spec.width,
         scene.spec.height,
         scene.spec.method,
