@@ -143,7 +143,7 @@ impl World<'_> {
                 hit: false,
             };
         };
-        let (radiance, rays) = self.from_hair(hit, origin, dir, options, rng);
+        let (radiance, rays) = self.radiance_from_hair(hit, origin, dir, options, rng);
         CameraSample {
             radiance,
             rays: rays + 1,
@@ -152,7 +152,7 @@ impl World<'_> {
     }
 
     /// The radiance leaving the hair at `hit` toward `origin`, and the rays traced after it.
-    fn from_hair(
+    fn radiance_from_hair(
         &self,
         mut hit: TubeHit,
         origin: DVec3,
