@@ -26,8 +26,10 @@ pub struct Passes {
     pub shadows: usize,
     /// Compute dispatches of those builds (up to five each: [`crate::shadows::STEPS`]).
     pub shadow_steps: usize,
-    /// Shading dispatches.
+    /// Shading passes.
     pub shading: usize,
+    /// Dispatches of those passes (one per [`crate::shading::light_chunks`] chunk).
+    pub shading_steps: usize,
     /// Resolve dispatches.
     pub resolve: usize,
     /// Uploads of the lobe table or back-scattering tables.
@@ -91,8 +93,9 @@ pub struct GpuFrame {
     pub(crate) lights_buffer: wgpu::Buffer,
     pub(crate) colours_buffer: wgpu::Buffer,
     pub(crate) image_buffer: wgpu::Buffer,
-    /// Rebuilt when a table buffer is replaced.
-    pub(crate) shade_group: Option<wgpu::BindGroup>,
+    /// The shading pass's bind groups for its light chunks, rebuilt when a table buffer is
+    /// replaced or the chunks change.
+    pub(crate) shade_groups: Option<(Vec<crate::shading::LightChunk>, Vec<wgpu::BindGroup>)>,
     pub(crate) resolve_group: wgpu::BindGroup,
     pub(crate) stopwatch: Option<Stopwatch>,
     pub(crate) passes: Passes,
