@@ -5,6 +5,7 @@
 
 use crate::buffers::Stopwatch;
 use crate::draw::Drawing;
+use crate::groom::GroomBuffers;
 use crate::shading::ShadeParams;
 use crate::shadows::ShadowMaps;
 use crate::strands::{StrandParams, StrandSource};
@@ -36,6 +37,8 @@ pub struct Passes {
     pub table_uploads: usize,
     /// Writes of strand records (a whole re-derivation or an `update_strands`).
     pub strand_uploads: usize,
+    /// Uploads of the groom itself ([`crate::groom::GroomBuffers`]): once per groom.
+    pub groom_uploads: usize,
 }
 
 /// The strand seen at each subsample, for picking strands to paint.
@@ -80,6 +83,7 @@ pub struct GpuFrame {
     /// Visible points: the first `visible` records of `drawing.visible`.
     pub(crate) visible: usize,
     pub(crate) drawing: Drawing,
+    pub(crate) groom: Arc<GroomBuffers>,
     pub(crate) params: ShadeParams,
     pub(crate) params_buffer: wgpu::Buffer,
     pub(crate) lobes: Option<(Arc<LobeTable>, wgpu::Buffer)>,

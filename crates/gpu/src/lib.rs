@@ -69,6 +69,7 @@ pub mod choice;
 pub mod device;
 pub mod draw;
 pub mod frame;
+pub mod groom;
 pub mod renderer;
 pub mod resolve;
 pub mod shading;

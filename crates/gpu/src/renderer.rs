@@ -5,6 +5,7 @@ use crate::buffers::{self, Stopwatch};
 use crate::device::GpuDevice;
 use crate::draw::{self, DrawInputs, DrawPipelines, Drawing};
 use crate::frame::{GpuFrame, GpuSeconds, Passes, Visibility};
+use crate::groom::GroomBuffers;
 use crate::resolve::{self, ResolveParams};
 use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
 use crate::shadows::{ShadowInputs, ShadowMaps, ShadowPipelines};
@@ -80,6 +81,17 @@ impl GpuRenderer {
     /// pixel, on the CPU while the GPU draws) and every strand's record uploaded, then the
     /// opacity maps and shadows at the visible points ([`crate::shadows`]).
     pub fn prepare(&self, scene: &Scene) -> Result<GpuFrame, GpuError> {
+        self.prepare_keeping(scene, None)
+    }
+
+    /// [`Self::prepare`], taking from `kept` (a frame of the same renderer) the groom's
+    /// buffers where they hold the scene's groom and the strand records where the strand count
+    /// and absorption source are the scene's, instead of uploading them again.
+    fn prepare_keeping(
+        &self,
+        scene: &Scene,
+        kept: Option<&GpuFrame>,
+    ) -> Result<GpuFrame, GpuError> {
         if scene.spec.method != Method::Srbf {
             return Err(GpuError::Method);
         }
@@ -106,7 +118,11 @@ impl GpuRenderer {
             ("the image", width * height * 16),
         ])?;
         let device = &self.gpu.device;
-        let drawing = Drawing::new(device, &self.draw, &inputs);
+        let (groom, groom_uploads) = match kept {
+            Some(f) if f.groom.holds(&scene.groom) => (f.groom.clone(), 0),
+            _ => (Arc::new(GroomBuffers::new(device, &scene.groom)), 1),
+        };
+        let drawing = Drawing::new(device, &self.draw, &inputs, &groom);
         let draw_stopwatch = Stopwatch::new(device, &self.gpu.queue, 1);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let drawing_steps = drawing.encode(
@@ -132,7 +148,21 @@ impl GpuRenderer {
             ("the shadows", shadow_bytes),
         ])?;
         let lights = light_records(&world_lights);
-        let strand_records = strands::derive(scene);
+        let strand_source = StrandSource::of(scene);
+        let (strand_records, strands_buffer, strand_uploads) = match kept {
+            Some(f)
+                if f.strands.len() == scene.groom.strand_count()
+                    && f.strand_source == strand_source =>
+            {
+                (f.strands.clone(), f.strands_buffer.clone(), 0)
+            }
+            _ => {
+                let records = strands::derive(scene);
+                let buffer =
+                    buffers::storage(device, "strands", bytemuck::cast_slice(&records), false);
+                (records, buffer, 1)
+            }
+        };
         let mut params = ShadeParams {
             eye: view.eye.as_vec3().to_array(),
             visible: visible as u32,
@@ -168,6 +198,7 @@ impl GpuRenderer {
             &self.shadows,
             &ShadowInputs {
                 groom: &scene.groom,
+                groom_buffers: &groom,
                 lights: &world_lights,
                 options: &scene.spec.shadows,
                 points: &drawing.visible,
@@ -210,19 +241,15 @@ impl GpuRenderer {
             lobes: None,
             back: None,
             no_back: buffers::storage(device, "no back-scattering tables", &[], false),
-            strands_buffer: buffers::storage(
-                device,
-                "strands",
-                bytemuck::cast_slice(&strand_records),
-                false,
-            ),
+            strands_buffer,
             strands: strand_records,
-            strand_source: StrandSource::of(scene),
+            strand_source,
             width,
             height,
             ss: inputs.ss,
             visible,
             drawing,
+            groom,
             shadows,
             lights_buffer: buffers::storage(device, "lights", bytemuck::cast_slice(&lights), false),
             colours_buffer,
@@ -235,7 +262,8 @@ impl GpuRenderer {
                 drawing_steps,
                 shadows: 1,
                 shadow_steps,
-                strand_uploads: 1,
+                strand_uploads,
+                groom_uploads,
                 ..Passes::default()
             },
             timings,
@@ -249,24 +277,20 @@ impl GpuRenderer {
     }
 
     /// A camera move on a shaded frame: stages 2–3 again (drawing, the opacity maps
-    /// and the shadows at the newly visible points) for `scene`, keeping the parameter tables
-    /// and the strand records (painted strands included) already on the device, so that the
-    /// next [`Self::shade`] uploads nothing a hair edit has not changed. A groom with another
-    /// strand count, or a changed absorption source, re-derives the strand records.
+    /// and the shadows at the newly visible points) for `scene`, keeping the parameter tables,
+    /// the groom's buffers and the strand records (painted strands included) already on the
+    /// device, so that neither this nor the next [`Self::shade`] uploads what a hair edit has
+    /// not changed. Another groom is uploaded; a groom with another strand count, or a changed
+    /// absorption source, re-derives the strand records.
     pub fn redraw(&self, frame: &mut GpuFrame, scene: &Scene) -> Result<(), GpuError> {
-        let mut fresh = self.prepare(scene)?;
+        let mut fresh = self.prepare_keeping(scene, Some(frame))?;
         let mut passes = frame.passes;
         passes.drawing += fresh.passes.drawing;
         passes.drawing_steps += fresh.passes.drawing_steps;
         passes.shadows += fresh.passes.shadows;
         passes.shadow_steps += fresh.passes.shadow_steps;
-        if fresh.strands.len() == frame.strands.len() && fresh.strand_source == frame.strand_source
-        {
-            std::mem::swap(&mut fresh.strands, &mut frame.strands);
-            std::mem::swap(&mut fresh.strands_buffer, &mut frame.strands_buffer);
-        } else {
-            passes.strand_uploads += fresh.passes.strand_uploads;
-        }
+        passes.strand_uploads += fresh.passes.strand_uploads;
+        passes.groom_uploads += fresh.passes.groom_uploads;
         fresh.lobes = frame.lobes.take();
         fresh.back = frame.back.take();
         fresh.params.grids = frame.params.grids;
@@ -282,6 +306,10 @@ impl GpuRenderer {
     /// the tables and the strand records stay on the device. The camera and groom must be
     /// the frame's (a camera move is [`Self::redraw`]).
     pub fn relight(&self, frame: &mut GpuFrame, scene: &Scene) -> Result<(), GpuError> {
+        debug_assert!(
+            frame.groom.holds(&scene.groom),
+            "relight with another groom"
+        );
         let device = &self.gpu.device;
         let start = Instant::now();
         let view = scene.camera.view(frame.width, frame.height);
@@ -298,6 +326,7 @@ impl GpuRenderer {
             &self.shadows,
             &ShadowInputs {
                 groom: &scene.groom,
+                groom_buffers: &frame.groom,
                 lights: &world_lights,
                 options: &scene.spec.shadows,
                 points: &frame.drawing.visible,

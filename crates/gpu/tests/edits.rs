@@ -36,6 +36,7 @@ fn a_hair_edit_reshades_without_redrawing() {
             resolve: 1,
             table_uploads: 2,
             strand_uploads: 1,
+            groom_uploads: 1,
         }
     );
     let mut edited = scene.clone();
@@ -88,8 +89,10 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
             resolve: 2,
             table_uploads: 2,
             strand_uploads: 1,
+            groom_uploads: 1,
         },
-        "a camera move must redo drawing, shadows and shading, and upload nothing else"
+        "a camera move must redo drawing, shadows and shading, and upload nothing else (the \
+         groom included)"
     );
     assert_ne!(after.pixels, before.pixels, "the move changed nothing");
     let (fresh, _) = gpu.render(&moved).unwrap();
@@ -113,6 +116,25 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
 }
 
 /// The strand covering the most subsamples.
+/// A redraw with another groom uploads it and derives its strand records (the camera-move
+/// test above keeps both because the groom is the same), and draws that groom: the image is
+/// the new scene's fresh render.
+#[test]
+fn a_redraw_with_another_groom_uploads_it() {
+    let cpu = Renderer::new();
+    let gpu = GpuRenderer::new(device(), &cpu);
+    let scene = load(spec(80, "default", 8));
+    let mut frame = gpu.prepare(&scene).unwrap();
+    gpu.shade(&mut frame, &scene);
+    let other = load(spec(60, "default", 8));
+    gpu.redraw(&mut frame, &other).unwrap();
+    let after = gpu.shade(&mut frame, &other);
+    let p = frame.passes();
+    assert_eq!((p.groom_uploads, p.strand_uploads), (2, 2), "{p:?}");
+    let (fresh, _) = gpu.render(&other).unwrap();
+    assert_eq!(after.pixels, fresh.pixels);
+}
+
 /// An environment rotation re-fits nothing: the map and its fitted lights turn together, and
 /// `relight` rebuilds the opacity maps and shadows for the turned lights without redrawing or
 /// uploading tables or strands. The image is the turned scene's: bit for bit the GPU's fresh
@@ -137,9 +159,9 @@ fn an_environment_rotation_reshadows_without_a_fit_or_a_redraw() {
     assert_eq!((p.shadows, p.shadow_steps), (2, 2 * first.shadow_steps));
     assert_eq!((p.shading, p.resolve), (2, 2));
     assert_eq!(
-        (p.table_uploads, p.strand_uploads),
-        (first.table_uploads, first.strand_uploads),
-        "a rotation uploaded tables or strands"
+        (p.table_uploads, p.strand_uploads, p.groom_uploads),
+        (first.table_uploads, first.strand_uploads, 1),
+        "a rotation uploaded tables, strand records or the groom"
     );
     assert_ne!(after.pixels, before.pixels, "the rotation changed nothing");
     let (fresh, _) = gpu.render(&turned).unwrap();
