@@ -103,10 +103,11 @@ pub fn run(args: Args) -> Result<()> {
     let mut out = OutDir::create(&args.out, "render")?;
     let renderer = Renderer::new();
     eprintln!(
-        "rendering {} strands ({} points) under {} SRBF lights at {}x{}, method {:?}, on {}",
+        "rendering {} strands ({} points) under {} SRBF lights ({} shaded) at {}x{}, method {:?}, on {}",
         scene.groom.strand_count(),
         scene.groom.point_count(),
         scene.lights.len(),
+        scene.shaded_lights(),
         scene.spec.width,
         scene.spec.height,
         scene.spec.method,
@@ -157,6 +158,7 @@ pub fn run(args: Args) -> Result<()> {
         "strands": scene.groom.strand_count(),
         "points": scene.groom.point_count(),
         "lights": scene.lights.len(),
+        "shaded_lights": scene.shaded_lights(),
         "srbf_fit_relative_l2": scene.fit_error,
         "visible_points": visible_points,
         "coverage": coverage,
@@ -241,6 +243,7 @@ pub fn bench(command: Bench) -> Result<()> {
         record["strands"] = json!(scene.groom.strand_count());
         record["points"] = json!(scene.groom.point_count());
         record["lights"] = json!(scene.lights.len());
+        record["shaded_lights"] = json!(scene.shaded_lights());
         record["seconds"]["tables"] = json!(renderer.table_seconds);
         record["seconds"]["srbf_fit"] = json!(scene.fit_seconds);
         out.finish(record)?;
@@ -304,6 +307,7 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
         "strands": scene.groom.strand_count(),
         "points": scene.groom.point_count(),
         "lights": scene.lights.len(),
+        "shaded_lights": scene.shaded_lights(),
         "device": device::cpu_json(),
         "frames": report.frames,
         "visible_points": report.visible_points,

@@ -6,7 +6,7 @@
 //! allocator in `tests/memory.rs`): how many points are visible is known only after drawing, so
 //! the visible-point buffers count the least of the groom's points and two per subsample.
 
-use crate::frame::sub_lights::split_wide;
+use crate::frame::sub_lights::{max_sub_lights, split_wide};
 use crate::scene::{Method, Scene, SceneSpec};
 use cuticle_fiber::marschner2003::MarschnerParams;
 use cuticle_groom::procedural::Preset;
@@ -148,6 +148,13 @@ pub fn frame_need(
     }
 }
 
+/// The most lights a frame shades for `fitted` SRBF lights before they are split: each wide
+/// light may become sub-lights of the shared set of `max_sub_lights` (frame/sub_lights.rs), so
+/// the split adds at most that many.
+pub fn split_bound(spec: &SceneSpec, fitted: usize) -> usize {
+    fitted + max_sub_lights(spec.shadows.split_bandwidth)
+}
+
 /// The lights a frame of `spec` shades: the brute force's 6 n² directions, or the SRBF lights.
 pub fn light_count(spec: &SceneSpec, srbf_lights: usize) -> u64 {
     match spec.method {
@@ -159,7 +166,8 @@ pub fn light_count(spec: &SceneSpec, srbf_lights: usize) -> u64 {
 impl SceneSpec {
     /// What a frame of this scene needs, known before the groom is made: a preset's points at
     /// its most points per strand (a `.hair` groom counts as none until it is read), and
-    /// `lights` SRBF lights (read from a file) or the number to fit.
+    /// `lights` SRBF lights (read from a file) or the number to fit, with the most sub-lights
+    /// their split can add.
     pub fn memory_need(&self, lights: Option<usize>, threads: usize) -> MemoryNeed {
         let (points, strands) = match self.groom.parse::<Preset>() {
             Ok(preset) => {
@@ -171,22 +179,28 @@ impl SceneSpec {
             }
             Err(_) => (0, 0),
         };
-        let lights = light_count(self, lights.unwrap_or(self.lights));
+        let lights = light_count(self, split_bound(self, lights.unwrap_or(self.lights)));
         frame_need(self, points, strands, lights, threads as u64, 0)
     }
 }
 
 impl Scene {
+    /// The lights a frame of this scene shades: the brute force's directions, or the SRBF
+    /// lights after the wide ones are split (what render.json reports as `shaded_lights`).
+    pub fn shaded_lights(&self) -> u64 {
+        light_count(
+            &self.spec,
+            split_wide(&self.lights, self.spec.shadows.split_bandwidth).len(),
+        )
+    }
+
     /// What a frame of this loaded scene needs.
     pub fn memory_need(&self, threads: usize) -> MemoryNeed {
         frame_need(
             &self.spec,
             self.groom.point_count() as u64,
             self.groom.strand_count() as u64,
-            light_count(
-                &self.spec,
-                split_wide(&self.lights, self.spec.shadows.split_bandwidth).len(),
-            ),
+            self.shaded_lights(),
             threads as u64,
             (self.env.width() * self.env.height()) as u64,
         )
@@ -231,5 +245,27 @@ mod tests {
             Bytes(default.total())
         );
         assert!(default.check(1 << 30).is_ok());
+    }
+
+    /// Before the lights are fitted, the estimate counts the sub-lights the split may add: the
+    /// shadows of a frame grow with them, and splitting off must lower it.
+    #[test]
+    fn the_estimate_before_the_fit_counts_the_sub_lights() {
+        let mut split = SceneSpec::default();
+        split.shadows.split_bandwidth = 0.5;
+        let mut whole = split.clone();
+        whole.shadows.split_bandwidth = 1000.0;
+        assert_eq!(split_bound(&split, 40), 40 + 51);
+        assert_eq!(split_bound(&whole, 40), 41);
+        let (a, b) = (
+            split.memory_need(Some(40), 2),
+            whole.memory_need(Some(40), 2),
+        );
+        assert!(
+            a.total() > b.total(),
+            "{} vs {}",
+            Bytes(a.total()),
+            Bytes(b.total())
+        );
     }
 }
