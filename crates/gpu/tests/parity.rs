@@ -131,6 +131,15 @@ fn eccentric_fiber_under_split_lights_matches_the_cpu() {
     let scene = load(s);
     let e = compare(&scene, "sky, eccentric 0.85, split lights");
     assert!(e < 1e-3, "{e}");
+    // The GPU's image is the eccentric one: far from the circular fiber's under these lights.
+    let mut circular = scene.clone();
+    circular.spec.hair.eccentricity = 1.0;
+    let (got, frame) = gpu().render(&scene).expect("GPU render");
+    let (without, prepared, _) = cpu().render(&circular);
+    let mask = agreeing_pixels(&gpu().coverage(&frame), &prepared.coverage);
+    let share = relative_rmse(&got, &without, &mask.hair);
+    eprintln!("under split lights the GPU's eccentric image is {share:.3} from the circular one");
+    assert!(share > 10.0 * 1e-3, "{share}");
 }
 
 /// Zero-length segments, one-point strands and an empty groom render finite pixels equal to the
