@@ -5,6 +5,7 @@
 
 use crate::buffers::Stopwatch;
 use crate::draw::Drawing;
+use crate::groom::GroomBuffers;
 use crate::shading::ShadeParams;
 use crate::shadows::ShadowMaps;
 use crate::strands::{StrandParams, StrandSource};
@@ -26,14 +27,18 @@ pub struct Passes {
     pub shadows: usize,
     /// Compute dispatches of those builds (up to five each: [`crate::shadows::STEPS`]).
     pub shadow_steps: usize,
-    /// Shading dispatches.
+    /// Shading passes.
     pub shading: usize,
+    /// Dispatches of those passes (one per [`crate::shading::light_chunks`] chunk).
+    pub shading_steps: usize,
     /// Resolve dispatches.
     pub resolve: usize,
     /// Uploads of the lobe table or back-scattering tables.
     pub table_uploads: usize,
     /// Writes of strand records (a whole re-derivation or an `update_strands`).
     pub strand_uploads: usize,
+    /// Uploads of the groom itself ([`crate::groom::GroomBuffers`]): once per groom.
+    pub groom_uploads: usize,
 }
 
 /// The strand seen at each subsample, for picking strands to paint.
@@ -78,6 +83,7 @@ pub struct GpuFrame {
     /// Visible points: the first `visible` records of `drawing.visible`.
     pub(crate) visible: usize,
     pub(crate) drawing: Drawing,
+    pub(crate) groom: Arc<GroomBuffers>,
     pub(crate) params: ShadeParams,
     pub(crate) params_buffer: wgpu::Buffer,
     pub(crate) lobes: Option<(Arc<LobeTable>, wgpu::Buffer)>,
@@ -91,8 +97,9 @@ pub struct GpuFrame {
     pub(crate) lights_buffer: wgpu::Buffer,
     pub(crate) colours_buffer: wgpu::Buffer,
     pub(crate) image_buffer: wgpu::Buffer,
-    /// Rebuilt when a table buffer is replaced.
-    pub(crate) shade_group: Option<wgpu::BindGroup>,
+    /// The shading pass's bind groups for its light chunks, rebuilt when a table buffer is
+    /// replaced or the chunks change.
+    pub(crate) shade_groups: Option<(Vec<crate::shading::LightChunk>, Vec<wgpu::BindGroup>)>,
     pub(crate) resolve_group: wgpu::BindGroup,
     pub(crate) stopwatch: Option<Stopwatch>,
     pub(crate) passes: Passes,

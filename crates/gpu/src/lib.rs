@@ -12,16 +12,20 @@
 //! 3. shadows: deep opacity maps of every lit light, filtered to its bandwidth, and T̃ at every
 //!    visible point, on the GPU ([`shadows`]), into the buffer shading reads;
 //! 4. shading: one compute invocation per visible point ([`shading`]: single scattering, dual
-//!    scattering; WGSL files named after the CPU files they port);
+//!    scattering; WGSL files named after the CPU files they port), the lights in as many
+//!    dispatches as keep an invocation within llvmpipe's loop budget (one for the usual
+//!    scenes; [`shading::LOOP_BUDGET`]);
 //! 5. resolve: subsamples averaged into pixels on the GPU ([`resolve`]).
 //!
 //! [`bench`] times it on the paper's workload (`cuticle bench render --device gpu`), with GPU
 //! timestamps where the adapter has them; [`strands`] holds the per-strand records.
 //!
 //! Only what an edit changes is redone: a hair-parameter or paint edit re-runs shading and
-//! resolve ([`GpuRenderer::shade`], [`GpuRenderer::update_strands`]); a camera or light move
+//! resolve ([`GpuRenderer::shade`], [`GpuRenderer::update_strands`]); a camera move
 //! redraws and rebuilds the shadows, keeping the uploaded tables and strand records
-//! ([`GpuRenderer::redraw`]), then re-shades. [`GpuFrame::passes`] counts what ran.
+//! ([`GpuRenderer::redraw`]), then re-shades; an environment rotation turns the fitted lights
+//! with the map (no fit) and rebuilds the shadows and background only
+//! ([`GpuRenderer::relight`]). [`GpuFrame::passes`] counts what ran.
 //!
 //! # Use (the CLI, the window)
 //! ```no_run
@@ -46,6 +50,10 @@
 //! gpu.redraw(&mut frame, &scene)?; // a camera move: drawing and shadows again (the groom
 //!                                  // re-sent, no table or strand record)
 //! let moved = gpu.shade(&mut frame, &scene);
+//! // An environment rotation: turn scene.lights' directions and the map (Scene::from_parts
+//! // with env.with_rotation), then
+//! gpu.relight(&mut frame, &scene)?; // shadows and background again, no drawing, no fit
+//! let turned = gpu.shade(&mut frame, &scene);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //! Every call blocks until the GPU is done; a window calls them from its render worker.
@@ -61,6 +69,7 @@ pub mod choice;
 pub mod device;
 pub mod draw;
 pub mod frame;
+pub mod groom;
 pub mod renderer;
 pub mod resolve;
 pub mod shading;

@@ -5,6 +5,7 @@ use crate::buffers::{self, Stopwatch};
 use crate::device::GpuDevice;
 use crate::draw::{self, DrawInputs, DrawPipelines, Drawing};
 use crate::frame::{GpuFrame, GpuSeconds, Passes, Visibility};
+use crate::groom::GroomBuffers;
 use crate::resolve::{self, ResolveParams};
 use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
 use crate::shadows::{ShadowInputs, ShadowMaps, ShadowPipelines};
@@ -80,6 +81,17 @@ impl GpuRenderer {
     /// pixel, on the CPU while the GPU draws) and every strand's record uploaded, then the
     /// opacity maps and shadows at the visible points ([`crate::shadows`]).
     pub fn prepare(&self, scene: &Scene) -> Result<GpuFrame, GpuError> {
+        self.prepare_keeping(scene, None)
+    }
+
+    /// [`Self::prepare`], taking from `kept` (a frame of the same renderer) the groom's
+    /// buffers where they hold the scene's groom and the strand records where the strand count
+    /// and absorption source are the scene's, instead of uploading them again.
+    fn prepare_keeping(
+        &self,
+        scene: &Scene,
+        kept: Option<&GpuFrame>,
+    ) -> Result<GpuFrame, GpuError> {
         if scene.spec.method != Method::Srbf {
             return Err(GpuError::Method);
         }
@@ -106,7 +118,11 @@ impl GpuRenderer {
             ("the image", width * height * 16),
         ])?;
         let device = &self.gpu.device;
-        let drawing = Drawing::new(device, &self.draw, &inputs);
+        let (groom, groom_uploads) = match kept {
+            Some(f) if f.groom.holds(&scene.groom) => (f.groom.clone(), 0),
+            _ => (Arc::new(GroomBuffers::new(device, &scene.groom)), 1),
+        };
+        let drawing = Drawing::new(device, &self.draw, &inputs, &groom);
         let draw_stopwatch = Stopwatch::new(device, &self.gpu.queue, 1);
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let drawing_steps = drawing.encode(
@@ -118,10 +134,7 @@ impl GpuRenderer {
             s.resolve(&mut encoder);
         }
         self.gpu.queue.submit([encoder.finish()]);
-        let background: Vec<[f32; 4]> = frame_background(scene, &view)
-            .iter()
-            .map(|b| [b.x as f32, b.y as f32, b.z as f32, 1.0])
-            .collect();
+        let background = background_records(scene, &view);
         let visible = drawing.read_count(device, &self.gpu.queue);
         timings.drawing = start.elapsed().as_secs_f64();
         let draw_gpu_seconds =
@@ -134,16 +147,22 @@ impl GpuRenderer {
             ("the opacity maps", layer_bytes),
             ("the shadows", shadow_bytes),
         ])?;
-        let lights: Vec<LightRecord> = world_lights
-            .iter()
-            .map(|l| LightRecord {
-                direction: l.direction.as_vec3().to_array(),
-                bandwidth: l.bandwidth as f32,
-                radiance: l.radiance.as_vec3().to_array(),
-                _pad: 0.0,
-            })
-            .collect();
-        let strand_records = strands::derive(scene);
+        let lights = light_records(&world_lights);
+        let strand_source = StrandSource::of(scene);
+        let (strand_records, strands_buffer, strand_uploads) = match kept {
+            Some(f)
+                if f.strands.len() == scene.groom.strand_count()
+                    && f.strand_source == strand_source =>
+            {
+                (f.strands.clone(), f.strands_buffer.clone(), 0)
+            }
+            _ => {
+                let records = strands::derive(scene);
+                let buffer =
+                    buffers::storage(device, "strands", bytemuck::cast_slice(&records), false);
+                (records, buffer, 1)
+            }
+        };
         let mut params = ShadeParams {
             eye: view.eye.as_vec3().to_array(),
             visible: visible as u32,
@@ -179,6 +198,7 @@ impl GpuRenderer {
             &self.shadows,
             &ShadowInputs {
                 groom: &scene.groom,
+                groom_buffers: &groom,
                 lights: &world_lights,
                 options: &scene.spec.shadows,
                 points: &drawing.visible,
@@ -221,24 +241,20 @@ impl GpuRenderer {
             lobes: None,
             back: None,
             no_back: buffers::storage(device, "no back-scattering tables", &[], false),
-            strands_buffer: buffers::storage(
-                device,
-                "strands",
-                bytemuck::cast_slice(&strand_records),
-                false,
-            ),
+            strands_buffer,
             strands: strand_records,
-            strand_source: StrandSource::of(scene),
+            strand_source,
             width,
             height,
             ss: inputs.ss,
             visible,
             drawing,
+            groom,
             shadows,
             lights_buffer: buffers::storage(device, "lights", bytemuck::cast_slice(&lights), false),
             colours_buffer,
             image_buffer,
-            shade_group: None,
+            shade_groups: None,
             resolve_group,
             stopwatch: Stopwatch::new(device, &self.gpu.queue, 2),
             passes: Passes {
@@ -246,7 +262,8 @@ impl GpuRenderer {
                 drawing_steps,
                 shadows: 1,
                 shadow_steps,
-                strand_uploads: 1,
+                strand_uploads,
+                groom_uploads,
                 ..Passes::default()
             },
             timings,
@@ -259,31 +276,119 @@ impl GpuRenderer {
         Ok(frame)
     }
 
-    /// A camera or light move on a shaded frame: stages 2–3 again (drawing, the opacity maps
-    /// and the shadows at the newly visible points) for `scene`, keeping the parameter tables
-    /// and the strand records (painted strands included) already on the device, so that the
-    /// next [`Self::shade`] uploads nothing a hair edit has not changed. A groom with another
-    /// strand count, or a changed absorption source, re-derives the strand records.
+    /// A camera move on a shaded frame: stages 2–3 again (drawing, the opacity maps
+    /// and the shadows at the newly visible points) for `scene`, keeping the parameter tables,
+    /// the groom's buffers and the strand records (painted strands included) already on the
+    /// device, so that neither this nor the next [`Self::shade`] uploads what a hair edit has
+    /// not changed. Another groom is uploaded; a groom with another strand count, or a changed
+    /// absorption source, re-derives the strand records.
     pub fn redraw(&self, frame: &mut GpuFrame, scene: &Scene) -> Result<(), GpuError> {
-        let mut fresh = self.prepare(scene)?;
+        let mut fresh = self.prepare_keeping(scene, Some(frame))?;
         let mut passes = frame.passes;
         passes.drawing += fresh.passes.drawing;
         passes.drawing_steps += fresh.passes.drawing_steps;
         passes.shadows += fresh.passes.shadows;
         passes.shadow_steps += fresh.passes.shadow_steps;
-        if fresh.strands.len() == frame.strands.len() && fresh.strand_source == frame.strand_source
-        {
-            std::mem::swap(&mut fresh.strands, &mut frame.strands);
-            std::mem::swap(&mut fresh.strands_buffer, &mut frame.strands_buffer);
-        } else {
-            passes.strand_uploads += fresh.passes.strand_uploads;
-        }
+        passes.strand_uploads += fresh.passes.strand_uploads;
+        passes.groom_uploads += fresh.passes.groom_uploads;
         fresh.lobes = frame.lobes.take();
         fresh.back = frame.back.take();
         fresh.params.grids = frame.params.grids;
         fresh.passes = passes;
         *frame = fresh;
         Ok(())
+    }
+
+    /// An environment rotation (or any change of the lights alone) on a prepared frame: the
+    /// scene's lights, already turned with the map (a rotation re-fits nothing), replace the
+    /// frame's; their opacity maps and shadows at the visible points are built again and the
+    /// background is read again from the turned map, while the drawing, the visible points,
+    /// the tables and the strand records stay on the device. The camera and groom must be
+    /// the frame's (a camera move is [`Self::redraw`]).
+    pub fn relight(&self, frame: &mut GpuFrame, scene: &Scene) -> Result<(), GpuError> {
+        debug_assert!(
+            frame.groom.holds(&scene.groom),
+            "relight with another groom"
+        );
+        let device = &self.gpu.device;
+        let start = Instant::now();
+        let view = scene.camera.view(frame.width, frame.height);
+        let world_lights = srbf_lights(scene);
+        let (layer_bytes, shadow_bytes) =
+            ShadowMaps::sizes(&world_lights, scene.spec.shadows.resolution, frame.visible);
+        self.check_sizes(&[
+            ("the opacity maps", layer_bytes),
+            ("the shadows", shadow_bytes),
+        ])?;
+        let lights = light_records(&world_lights);
+        let shadows = ShadowMaps::new(
+            device,
+            &self.shadows,
+            &ShadowInputs {
+                groom: &scene.groom,
+                groom_buffers: &frame.groom,
+                lights: &world_lights,
+                options: &scene.spec.shadows,
+                points: &frame.drawing.visible,
+                point_count: frame.visible,
+            },
+        );
+        let stopwatch = Stopwatch::new(device, &self.gpu.queue, 1);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let steps = shadows.encode(
+            &self.shadows,
+            &mut encoder,
+            stopwatch.as_ref().map(|s| (s.query_set(), 0)),
+        );
+        if let Some(s) = &stopwatch {
+            s.resolve(&mut encoder);
+        }
+        self.gpu.queue.submit([encoder.finish()]);
+        self.wait();
+        frame.shadow_gpu_seconds = stopwatch.map(|s| s.seconds(device, &self.gpu.queue)[0]);
+        frame.shadows = shadows;
+        frame.lights_buffer =
+            buffers::storage(device, "lights", bytemuck::cast_slice(&lights), false);
+        frame.params.lights = lights.len() as u32;
+        frame.shade_groups = None;
+        let background = buffers::storage(
+            device,
+            "background",
+            bytemuck::cast_slice(&background_records(scene, &view)),
+            false,
+        );
+        frame.resolve_group = self.resolve_group(frame, &background);
+        frame.passes.shadows += 1;
+        frame.passes.shadow_steps += steps;
+        frame.timings.shadows = start.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// The resolve pass's bind group for `frame` with `background`.
+    fn resolve_group(&self, frame: &GpuFrame, background: &wgpu::Buffer) -> wgpu::BindGroup {
+        let params = ResolveParams {
+            width: frame.width as u32,
+            height: frame.height as u32,
+            ss: frame.ss as u32,
+            _pad: 0,
+        };
+        let params = buffers::uniform(
+            &self.gpu.device,
+            "resolve params",
+            bytemuck::bytes_of(&params),
+        );
+        buffers::bind_group(
+            &self.gpu.device,
+            &self.resolve.get_bind_group_layout(0),
+            "resolve",
+            &[
+                &params,
+                &frame.drawing.coverage,
+                background,
+                &frame.colours_buffer,
+                &frame.image_buffer,
+            ],
+        )
     }
 
     /// Refuses buffers over the device's limits with a clear error (wgpu would panic).
@@ -342,37 +447,27 @@ impl GpuRenderer {
         self.gpu
             .queue
             .write_buffer(&frame.params_buffer, 0, bytemuck::bytes_of(&params));
-        let group = frame.shade_group.get_or_insert_with(|| {
-            let lobes = &frame.lobes.as_ref().expect("uploaded").1;
-            let back = frame.back.as_ref().map_or(&frame.no_back, |b| &b.1);
-            buffers::bind_group(
-                &self.gpu.device,
-                &self.shade.get_bind_group_layout(0),
-                "shade",
-                &[
-                    &frame.params_buffer,
-                    &self.static_tables,
-                    lobes,
-                    back,
-                    &frame.strands_buffer,
-                    &frame.drawing.visible,
-                    &frame.shadows.shadow,
-                    &frame.lights_buffer,
-                    &frame.colours_buffer,
-                ],
-            )
-        });
+        let chunks = shading::light_chunks(&params);
+        if frame
+            .shade_groups
+            .as_ref()
+            .is_none_or(|(c, _)| *c != chunks)
+        {
+            frame.shade_groups = Some((chunks.clone(), self.shade_groups(frame, &chunks)));
+        }
+        let groups = &frame.shade_groups.as_ref().expect("just made").1;
         let start = Instant::now();
         let (gx, gy) = shading::workgroups(frame.params.visible as usize);
         self.submit_pass(
             &self.shade,
-            group,
+            groups,
             (gx, gy),
             frame.stopwatch.as_ref(),
             0,
             false,
         );
         self.wait();
+        frame.passes.shading_steps += groups.len();
         frame.passes.shading += 1;
         frame.timings.shading = start.elapsed().as_secs_f64();
         let start = Instant::now();
@@ -384,7 +479,7 @@ impl GpuRenderer {
         let stopwatch = frame.stopwatch.as_ref();
         self.submit_pass(
             &self.resolve,
-            &frame.resolve_group,
+            std::slice::from_ref(&frame.resolve_group),
             tiles,
             stopwatch,
             1,
@@ -433,7 +528,7 @@ impl GpuRenderer {
             let buffer = self.table_buffer("lobe table", &packed.data);
             packed.describe(&mut frame.params.grids);
             frame.lobes = Some((lobes, buffer));
-            frame.shade_group = None;
+            frame.shade_groups = None;
             frame.passes.table_uploads += 1;
         }
         if scene.spec.multiple {
@@ -447,7 +542,7 @@ impl GpuRenderer {
                 let buffer = self.table_buffer("back-scattering tables", &packed.data);
                 packed.describe(&mut frame.params.grids);
                 frame.back = Some((back, buffer));
-                frame.shade_group = None;
+                frame.shade_groups = None;
                 frame.passes.table_uploads += 1;
             }
         }
@@ -457,12 +552,49 @@ impl GpuRenderer {
         buffers::storage(&self.gpu.device, label, bytemuck::cast_slice(data), false)
     }
 
-    /// Encodes and submits one compute pass, timed as pass `k` where timestamps exist
-    /// (resolving the queries with the last pass).
+    /// The shading pass's bind groups, one per dispatch of `chunks` (each with its own
+    /// [`shading::LightChunk`] uniform).
+    fn shade_groups(
+        &self,
+        frame: &GpuFrame,
+        chunks: &[shading::LightChunk],
+    ) -> Vec<wgpu::BindGroup> {
+        let lobes = &frame.lobes.as_ref().expect("uploaded").1;
+        let back = frame.back.as_ref().map_or(&frame.no_back, |b| &b.1);
+        let layout = self.shade.get_bind_group_layout(0);
+        chunks
+            .iter()
+            .map(|chunk| {
+                let chunk =
+                    buffers::uniform(&self.gpu.device, "light chunk", bytemuck::bytes_of(chunk));
+                buffers::bind_group(
+                    &self.gpu.device,
+                    &layout,
+                    "shade",
+                    &[
+                        &frame.params_buffer,
+                        &self.static_tables,
+                        lobes,
+                        back,
+                        &frame.strands_buffer,
+                        &frame.drawing.visible,
+                        &frame.shadows.shadow,
+                        &frame.lights_buffer,
+                        &frame.colours_buffer,
+                        &chunk,
+                    ],
+                )
+            })
+            .collect()
+    }
+
+    /// Encodes and submits one compute pass of a dispatch per bind group in `groups` (in
+    /// order: wgpu makes each dispatch's writes visible to the next), timed as pass `k` where
+    /// timestamps exist (resolving the queries with the last pass).
     fn submit_pass(
         &self,
         pipeline: &wgpu::ComputePipeline,
-        group: &wgpu::BindGroup,
+        groups: &[wgpu::BindGroup],
         (x, y): (u32, u32),
         stopwatch: Option<&Stopwatch>,
         k: u32,
@@ -478,8 +610,10 @@ impl GpuRenderer {
                 timestamp_writes: stopwatch.map(|s| s.writes(k)),
             });
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, group, &[]);
-            pass.dispatch_workgroups(x, y, 1);
+            for group in groups {
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(x, y, 1);
+            }
         }
         if let (Some(s), true) = (stopwatch, last) {
             s.resolve(&mut encoder);
@@ -587,4 +721,25 @@ impl GpuRenderer {
         let image = self.shade(&mut frame, scene);
         Ok((image, frame))
     }
+}
+
+/// The lights as the shading pass reads them.
+fn light_records(lights: &[cuticle_render::WorldLight]) -> Vec<LightRecord> {
+    lights
+        .iter()
+        .map(|l| LightRecord {
+            direction: l.direction.as_vec3().to_array(),
+            bandwidth: l.bandwidth as f32,
+            radiance: l.radiance.as_vec3().to_array(),
+            _pad: 0.0,
+        })
+        .collect()
+}
+
+/// The environment through each pixel (computed on the CPU), as the resolve pass reads it.
+fn background_records(scene: &Scene, view: &cuticle_render::scene::camera::View) -> Vec<[f32; 4]> {
+    frame_background(scene, view)
+        .iter()
+        .map(|b| [b.x as f32, b.y as f32, b.z as f32, 1.0])
+        .collect()
 }

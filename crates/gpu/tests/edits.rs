@@ -1,14 +1,16 @@
 //! What an edit redoes on the GPU: a hair-parameter edit re-shades and resolves without
 //! redrawing or rebuilding shadows (counted passes and their dispatches), a camera move
-//! redraws (the drawing's dispatches again) and rebuilds the shadows and re-shades without re-uploading tables or strands, and re-uploading one strand's
-//! parameters changes that strand's pixels and no other, as the CPU renderer paints it.
+//! redraws (the drawing's dispatches again) and rebuilds the shadows and re-shades without
+//! re-uploading tables or strands, an environment rotation turns the lights (no fit) and rebuilds
+//! the shadows without redrawing, and re-uploading one strand's parameters changes that
+//! strand's pixels and no other, as the CPU renderer paints it.
 
 mod common;
 
 use common::{agreeing_pixels, cpu, device, gpu, load, relative_rmse, spec};
 use cuticle_gpu::{GpuRenderer, Passes, StrandError, StrandParams, Visibility};
 use cuticle_groom::Absorption;
-use cuticle_render::Renderer;
+use cuticle_render::{Renderer, Scene};
 
 #[test]
 fn a_hair_edit_reshades_without_redrawing() {
@@ -30,9 +32,11 @@ fn a_hair_edit_reshades_without_redrawing() {
             shadows: 1,
             shadow_steps: 5,
             shading: 1,
+            shading_steps: 1,
             resolve: 1,
             table_uploads: 2,
             strand_uploads: 1,
+            groom_uploads: 1,
         }
     );
     let mut edited = scene.clone();
@@ -81,11 +85,14 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
             shadows: 2,
             shadow_steps: 10,
             shading: 2,
+            shading_steps: 2,
             resolve: 2,
             table_uploads: 2,
             strand_uploads: 1,
+            groom_uploads: 1,
         },
-        "a camera move must redo drawing, shadows and shading, and upload nothing else"
+        "a camera move must redo drawing, shadows and shading, and upload nothing else (the \
+         groom included)"
     );
     assert_ne!(after.pixels, before.pixels, "the move changed nothing");
     let (fresh, _) = gpu.render(&moved).unwrap();
@@ -109,6 +116,91 @@ fn a_camera_move_redraws_and_reshades_without_uploads() {
 }
 
 /// The strand covering the most subsamples.
+/// A redraw with another groom uploads it and derives its strand records (the camera-move
+/// test above keeps both because the groom is the same), and draws that groom: the image is
+/// the new scene's fresh render.
+#[test]
+fn a_redraw_with_another_groom_uploads_it() {
+    let cpu = Renderer::new();
+    let gpu = GpuRenderer::new(device(), &cpu);
+    let scene = load(spec(80, "default", 8));
+    let mut frame = gpu.prepare(&scene).unwrap();
+    gpu.shade(&mut frame, &scene);
+    let other = load(spec(60, "default", 8));
+    gpu.redraw(&mut frame, &other).unwrap();
+    let after = gpu.shade(&mut frame, &other);
+    let p = frame.passes();
+    assert_eq!((p.groom_uploads, p.strand_uploads), (2, 2), "{p:?}");
+    let (fresh, _) = gpu.render(&other).unwrap();
+    assert_eq!(after.pixels, fresh.pixels);
+}
+
+/// An environment rotation re-fits nothing: the map and its fitted lights turn together, and
+/// `relight` rebuilds the opacity maps and shadows for the turned lights without redrawing or
+/// uploading tables or strands. The image is the turned scene's: bit for bit the GPU's fresh
+/// render of it, and the CPU's within the parity bound (tests/parity.rs).
+#[test]
+fn an_environment_rotation_reshadows_without_a_fit_or_a_redraw() {
+    let cpu = Renderer::new();
+    let gpu = GpuRenderer::new(device(), &cpu);
+    let scene = load(spec(80, "default", 8));
+    let mut frame = gpu.prepare(&scene).unwrap();
+    let before = gpu.shade(&mut frame, &scene);
+    let first = frame.passes();
+    let turned = rotated(&scene, 60.0);
+    gpu.relight(&mut frame, &turned).unwrap();
+    let after = gpu.shade(&mut frame, &turned);
+    let p = frame.passes();
+    assert_eq!(
+        (p.drawing, p.drawing_steps),
+        (1, first.drawing_steps),
+        "a rotation redrew"
+    );
+    assert_eq!((p.shadows, p.shadow_steps), (2, 2 * first.shadow_steps));
+    assert_eq!((p.shading, p.resolve), (2, 2));
+    assert_eq!(
+        (p.table_uploads, p.strand_uploads, p.groom_uploads),
+        (first.table_uploads, first.strand_uploads, 1),
+        "a rotation uploaded tables, strand records or the groom"
+    );
+    assert_ne!(after.pixels, before.pixels, "the rotation changed nothing");
+    let (fresh, _) = gpu.render(&turned).unwrap();
+    assert_eq!(
+        after.pixels, fresh.pixels,
+        "the relit frame is not the turned one"
+    );
+    let (want, prepared, _) = cpu.render(&turned);
+    let mask = agreeing_pixels(&gpu.coverage(&frame), &prepared.coverage);
+    let e = relative_rmse(&after, &want, &mask.hair);
+    eprintln!("turned 60°: relative RMSE against the CPU {e:.2e}");
+    assert!(e < 5e-3, "{e}");
+    // And the turn is not a no-op on the CPU either: the turned image is far from the first.
+    let moved = relative_rmse(&before, &want, &mask.hair);
+    assert!(moved > 10.0 * 5e-3, "{moved}");
+}
+
+/// `scene` with its map and its fitted lights turned by `deg` about the up axis (+y), as the
+/// viewer turns them before its re-fit: no fit.
+fn rotated(scene: &Scene, deg: f64) -> Scene {
+    let (s, c) = (deg.to_radians() as f32).sin_cos();
+    let lights = scene
+        .lights
+        .iter()
+        .map(|l| {
+            let (d, mut l) = (l.direction, *l);
+            l.direction = glam::Vec3::new(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+            l
+        })
+        .collect();
+    let mut spec = scene.spec.clone();
+    spec.env_rotate_deg += deg;
+    let env = scene
+        .env
+        .clone()
+        .with_rotation(spec.env_rotate_deg.to_radians());
+    Scene::from_parts(spec, scene.groom.clone(), env, lights)
+}
+
 fn most_visible(vis: &Visibility, strands: usize) -> usize {
     let mut count = vec![0usize; strands];
     vis.strand

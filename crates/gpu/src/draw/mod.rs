@@ -22,6 +22,7 @@
 pub mod scan;
 
 use crate::buffers;
+use crate::groom::GroomBuffers;
 use bytemuck::{Pod, Zeroable};
 use cuticle_groom::Groom;
 use cuticle_render::frame::fiber_frames::strand_of_points;
@@ -138,36 +139,26 @@ pub struct Drawing {
 }
 
 impl Drawing {
-    /// Uploads the groom and the camera and allocates the buffers (no dispatch yet).
-    pub fn new(device: &wgpu::Device, pipelines: &DrawPipelines, inputs: &DrawInputs) -> Self {
+    /// Uploads the camera and allocates the buffers, reading the groom from `groom` (already
+    /// on the device; no dispatch yet).
+    pub fn new(
+        device: &wgpu::Device,
+        pipelines: &DrawPipelines,
+        inputs: &DrawInputs,
+        groom_buffers: &GroomBuffers,
+    ) -> Self {
         let groom = inputs.groom;
         let ss = inputs.ss.max(1);
         let (sw, sh) = (inputs.width * ss, inputs.height * ss);
-        let points: Vec<[f32; 4]> = groom
-            .positions()
-            .iter()
-            .zip(groom.thickness())
-            .map(|(p, &t)| [p.x, p.y, p.z, t])
-            .collect();
-        let tangents: Vec<[f32; 4]> = groom
-            .tangents()
-            .iter()
-            .map(|t| [t.x, t.y, t.z, 0.0])
-            .collect();
-        let segments: Vec<u32> = (0..groom.strand_count())
-            .flat_map(|s| {
-                let r = groom.strand_range(s);
-                (r.start..r.end.saturating_sub(1)).map(|i| i as u32)
-            })
-            .collect();
+        let (point_count, segment_count) = (groom_buffers.point_count, groom_buffers.segment_count);
         let strand_of_point = strand_of_points(groom);
         let view = inputs.view;
         let eye_hi = view.eye.as_vec3();
         let params = DrawParams {
             eye_hi: eye_hi.to_array(),
-            points: points.len() as u32,
+            points: point_count as u32,
             eye_lo: (view.eye - eye_hi.as_dvec3()).as_vec3().to_array(),
-            segments: segments.len() as u32,
+            segments: segment_count as u32,
             right: view.right.as_vec3().to_array(),
             focal: view.focal as f32,
             up: view.up.as_vec3().to_array(),
@@ -181,24 +172,23 @@ impl Drawing {
             near: NEAR as f32,
             _pad: [0; 3],
         };
-        let storage = |label, bytes: &[u8]| buffers::storage(device, label, bytes, false);
         let uniform = buffers::uniform(device, "draw params", bytemuck::bytes_of(&params));
         let second = DrawParams { mode: 1, ..params };
         let uniform_second = buffers::uniform(device, "draw params", bytemuck::bytes_of(&second));
-        let groom_buffer = storage("groom points", bytemuck::cast_slice(&points));
-        let segments_buffer = storage("segments", bytemuck::cast_slice(&segments));
-        let tangents_buffer = storage("tangents", bytemuck::cast_slice(&tangents));
-        let strands_buffer = storage("strand of point", bytemuck::cast_slice(&strand_of_point));
-        let projected = buffers::output(device, "projected points", points.len() * 16);
-        let lines = buffers::output(device, "lines", (segments.len() + 1) * 4);
+        let groom_buffer = &groom_buffers.points;
+        let segments_buffer = &groom_buffers.segments;
+        let tangents_buffer = &groom_buffers.tangents;
+        let strands_buffer = &groom_buffers.strand_of_point;
+        let projected = buffers::output(device, "projected points", point_count * 16);
+        let lines = buffers::output(device, "lines", (segment_count + 1) * 4);
         let depth = buffers::output(device, "nearest depth", sw * sh * 4);
         let nearest = buffers::output(device, "nearest segment", sw * sh * 4);
         let coverage = buffers::output(device, "visibility", sw * sh * 8);
-        let seen = buffers::output(device, "seen points", (points.len() + 1) * 4);
+        let seen = buffers::output(device, "seen points", (point_count + 1) * 4);
         let visible = buffers::output(
             device,
             "visible points",
-            points.len() * size_of::<crate::shading::PointRecord>(),
+            point_count * size_of::<crate::shading::PointRecord>(),
         );
         let cover_groups = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("cover workgroups"),
@@ -214,16 +204,16 @@ impl Drawing {
         });
         let bound: [(u32, &wgpu::Buffer); 13] = [
             (0, &uniform),
-            (1, &groom_buffer),
-            (2, &segments_buffer),
+            (1, groom_buffer),
+            (2, segments_buffer),
             (3, &projected),
             (4, &lines),
             (5, &depth),
             (6, &nearest),
             (7, &coverage),
             (8, &seen),
-            (9, &tangents_buffer),
-            (10, &strands_buffer),
+            (9, tangents_buffer),
+            (10, strands_buffer),
             (11, &visible),
             (12, &cover_groups),
         ];
@@ -258,8 +248,8 @@ impl Drawing {
         let cover_second = group(pipelines.step("cover"), uses[3], &uniform_second);
         Self {
             params,
-            lines_scan: Scan::new(device, &pipelines.scan, &lines, segments.len() + 1),
-            seen_scan: Scan::new(device, &pipelines.scan, &seen, points.len() + 1),
+            lines_scan: Scan::new(device, &pipelines.scan, &lines, segment_count + 1),
+            seen_scan: Scan::new(device, &pipelines.scan, &seen, point_count + 1),
             coverage,
             visible,
             strand_of_point,

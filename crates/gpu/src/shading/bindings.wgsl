@@ -52,6 +52,14 @@ struct Params {
     grids: array<Grid, 9>,
 }
 
+// The lights one dispatch of the pass adds: first, first + 1, …, first + count − 1.
+struct LightChunk {
+    first: u32,
+    count: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
 // A visible point: where it is, its strand, its tangent and its index in the groom.
 struct Point {
     position: vec3<f32>,
@@ -80,3 +88,5 @@ struct Light {
 @group(0) @binding(7) var<storage, read> lights: array<Light>;
 // L_o of each groom point (only visible ones are written).
 @group(0) @binding(8) var<storage, read_write> colours: array<vec4<f32>>;
+// This dispatch's lights.
+@group(0) @binding(9) var<uniform> chunk: LightChunk;

@@ -1,5 +1,6 @@
 // The shading pass (frame/renderer.rs's SrbfFrame::shade): L_o at every visible point, single
-// scattering from the shadowed lights above the cutoff, plus dual scattering.
+// scattering from the shadowed lights above the cutoff, plus dual scattering. One dispatch
+// adds the lights of one `chunk` (shading/mod.rs's lights_per_dispatch), the first writes.
 
 @compute @workgroup_size(64)
 fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
@@ -12,17 +13,21 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) 
     let ao = angles(f, normalize(params.eye - pt.position));
     fiber = fiber_point(strands[pt.strand].xyz);
     var sum = vec3<f32>(0.0);
-    for (var j = 0u; j < params.lights; j++) {
+    let end = min(chunk.first + chunk.count, params.lights);
+    for (var j = chunk.first; j < end; j++) {
         let light = lights[j];
         let la = angles(f, light.direction);
         let t = shadow[k * params.lights + j];
         let lit = select(vec3<f32>(0.0), light.radiance * t, passes(t));
         if (any(lit != vec3<f32>(0.0))) {
-            sum += lit * modes(ao.theta, ao.phi, la.theta, la.phi, light.bandwidth);
+            sum += lit * modes(ao.theta, ao.phi, la.theta, la.phi, light.bandwidth, params.lobes);
         }
         if (params.multiple != 0u) {
             sum += dual_light(ao.theta, ao.phi, la.theta, la.phi, light.bandwidth, light.radiance, t);
         }
+    }
+    if (chunk.first != 0u) {
+        sum += colours[pt.index].xyz;
     }
     colours[pt.index] = vec4<f32>(sum, 1.0);
 }

@@ -69,9 +69,9 @@ fn longitudinal(t: u32) -> vec2<f32> {
     }
 }
 
-// Σ_t ℳ_t of one light (eq. 11) over the lobes on in params.lobes (bit t: lobe t; the CPU's
-// scene Lobes).
-fn modes(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32) -> vec3<f32> {
+// Σ_t ℳ_t of one light (eq. 11) over the lobes on in `lobes` (bit t: lobe t; the CPU's scene
+// Lobes, params.lobes).
+fn modes(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32, lobes: u32) -> vec3<f32> {
     let delta = phi_o - phi_j;
     var it: Integrand;
     it.bandwidth = bandwidth;
@@ -83,7 +83,7 @@ fn modes(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32) -> 
     let o = outgoing(theta_o);
     var sum = vec3<f32>(0.0);
     for (var t = 0u; t < 3u; t++) {
-        if ((params.lobes & (1u << t)) == 0u) {
+        if ((lobes & (1u << t)) == 0u) {
             continue;
         }
         let ab = longitudinal(t);

@@ -136,6 +136,8 @@ pub struct ShadowMaps {
 /// What the maps are built from.
 pub struct ShadowInputs<'a> {
     pub groom: &'a Groom,
+    /// The same groom on the device.
+    pub groom_buffers: &'a crate::groom::GroomBuffers,
     pub lights: &'a [WorldLight],
     pub options: &'a ShadowOptions,
     /// The visible points' buffer (shading's `PointRecord`s).
@@ -154,7 +156,8 @@ impl ShadowMaps {
         )
     }
 
-    /// Allocates the buffers and uploads the groom and the maps' frames (no dispatch yet).
+    /// Allocates the buffers and uploads the maps' frames, reading the groom from
+    /// `inputs.groom_buffers` (no dispatch yet).
     pub fn new(device: &wgpu::Device, pipelines: &ShadowPipelines, inputs: &ShadowInputs) -> Self {
         let groom = inputs.groom;
         let n = inputs.options.resolution;
@@ -173,18 +176,6 @@ impl ShadowMaps {
                 )
             })
             .collect();
-        let points: Vec<[f32; 4]> = groom
-            .positions()
-            .iter()
-            .zip(groom.thickness())
-            .map(|(p, &t)| [p.x, p.y, p.z, t])
-            .collect();
-        let segments: Vec<u32> = (0..groom.strand_count())
-            .flat_map(|s| {
-                let r = groom.strand_range(s);
-                (r.start..r.end.saturating_sub(1)).map(|i| i as u32)
-            })
-            .collect();
         let texel = maps.first().map_or(1.0, |m| m.texel as f64);
         let mut layers = [0.0f32; 8];
         for (l, &b) in layers.iter_mut().zip(&LAYERS) {
@@ -194,7 +185,7 @@ impl ShadowMaps {
             maps: maps.len() as u32,
             lights: inputs.lights.len() as u32,
             n: n as u32,
-            segments: segments.len() as u32,
+            segments: inputs.groom_buffers.segment_count as u32,
             points: inputs.point_count as u32,
             scale: fixed_point_scale(groom, texel) as f32,
             density: inputs.options.density as f32,
@@ -211,14 +202,12 @@ impl ShadowMaps {
         );
         let uniform = buffers::uniform(device, "shadow params", bytemuck::bytes_of(&params));
         let maps_buffer = storage("map frames", bytemuck::cast_slice(&maps));
-        let groom_buffer = storage("groom points", bytemuck::cast_slice(&points));
-        let segments_buffer = storage("segments", bytemuck::cast_slice(&segments));
         let map_of_light_buffer = storage("map of light", bytemuck::cast_slice(&map_of_light));
         let bound = [
             &uniform,
             &maps_buffer,
-            &groom_buffer,
-            &segments_buffer,
+            &inputs.groom_buffers.points,
+            &inputs.groom_buffers.segments,
             &first,
             &layer_buffer,
             inputs.points,
