@@ -7,7 +7,70 @@
 use cuticle_render::frame::raster::rasterize;
 use cuticle_render::{Scene, SceneSpec};
 use cuticle_trace::Accel;
+use glam::DVec3;
 use rayon::prelude::*;
+
+/// Width and height of the probe's images (those of the path references it masks).
+const SIZE: (usize, usize) = (360, 240);
+/// Camera rays per pixel side for the true coverage.
+const RAYS: usize = 8;
+
+/// The scene, the tubes' acceleration structure, the camera and the raster's coverage.
+struct Probe {
+    scene: Scene,
+    accel: Accel,
+    view: cuticle_render::scene::camera::View,
+    cov: cuticle_render::frame::raster::Coverage,
+}
+
+/// A pixel's true coverage and the mean environment radiance seen through it.
+struct TruePixel {
+    coverage: f64,
+    background: DVec3,
+}
+
+impl Probe {
+    fn load(groom: Option<&String>) -> Self {
+        let mut spec = SceneSpec::default();
+        if let Some(g) = groom {
+            spec.groom = g.clone();
+        }
+        let scene = Scene::load_without_lights(spec).unwrap();
+        let accel = Accel::build(&scene.groom);
+        let view = scene.camera.view(SIZE.0, SIZE.1);
+        let cov = rasterize(&scene.groom, &view, SIZE.0, SIZE.1, 3);
+        Probe {
+            scene,
+            accel,
+            view,
+            cov,
+        }
+    }
+
+    /// Pixel `k`'s true coverage from RAYS × RAYS camera rays through the tubes.
+    fn true_pixel(&self, k: usize) -> TruePixel {
+        let (x, y) = ((k % SIZE.0) as f64, (k / SIZE.0) as f64);
+        let (mut hits, mut background) = (0, DVec3::ZERO);
+        for i in 0..RAYS {
+            for j in 0..RAYS {
+                let d = self.view.ray(
+                    x + (i as f64 + 0.5) / RAYS as f64,
+                    y + (j as f64 + 0.5) / RAYS as f64,
+                );
+                if self.accel.closest(self.view.eye, d).is_some() {
+                    hits += 1;
+                } else {
+                    background += self.scene.env_radiance(d);
+                }
+            }
+        }
+        let n = (RAYS * RAYS) as f64;
+        TruePixel {
+            coverage: hits as f64 / n,
+            background: background / n,
+        }
+    }
+}
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -15,52 +78,23 @@ fn main() {
         write_mask(&args[2], args.get(3));
         return;
     }
-    let mut spec = SceneSpec::default();
-    if let Some(g) = args.get(1) {
-        spec.groom = g.clone();
-    }
-    let (w, h) = (360usize, 240usize);
-    let scene = Scene::load_without_lights(spec).unwrap();
-    let accel = Accel::build(&scene.groom);
-    let view = scene.camera.view(w, h);
-    let cov = rasterize(&scene.groom, &view, w, h, 3);
-    let hair: Vec<usize> = (0..w * h)
-        .filter(|&k| cov.pixel_fraction(k % w, k / w) >= 1.0)
+    let probe = Probe::load(args.get(1));
+    let w = SIZE.0;
+    let hair: Vec<usize> = (0..SIZE.0 * SIZE.1)
+        .filter(|&k| probe.cov.pixel_fraction(k % w, k / w) >= 1.0)
         .collect();
     let top = hair.iter().map(|k| k / w).min().unwrap();
     let bottom = hair.iter().map(|k| k / w).max().unwrap();
     let cut = top as f64 + 0.8 * (bottom - top) as f64;
-    let n = 8;
-    let truth: Vec<(f64, glam::DVec3)> = hair
-        .par_iter()
-        .map(|&k| {
-            let (x, y) = ((k % w) as f64, (k / w) as f64);
-            let mut hits = 0;
-            let mut miss = glam::DVec3::ZERO;
-            for i in 0..n {
-                for j in 0..n {
-                    let d = view.ray(
-                        x + (i as f64 + 0.5) / n as f64,
-                        y + (j as f64 + 0.5) / n as f64,
-                    );
-                    if accel.closest(view.eye, d).is_some() {
-                        hits += 1;
-                    } else {
-                        miss += scene.env_radiance(d);
-                    }
-                }
-            }
-            (hits as f64 / (n * n) as f64, miss / (n * n) as f64)
-        })
-        .collect();
+    let truth: Vec<TruePixel> = hair.par_iter().map(|&k| probe.true_pixel(k)).collect();
     let (mut s_all, mut s_tip, mut n_tip) = (0.0, 0.0, 0);
-    let (mut b_all, mut b_tip) = (glam::DVec3::ZERO, glam::DVec3::ZERO);
-    for (i, &k) in hair.iter().enumerate() {
-        s_all += truth[i].0;
-        b_all += truth[i].1;
+    let (mut b_all, mut b_tip) = (DVec3::ZERO, DVec3::ZERO);
+    for (t, &k) in truth.iter().zip(&hair) {
+        s_all += t.coverage;
+        b_all += t.background;
         if (k / w) as f64 > cut {
-            s_tip += truth[i].0;
-            b_tip += truth[i].1;
+            s_tip += t.coverage;
+            b_tip += t.background;
             n_tip += 1;
         }
     }
@@ -70,7 +104,7 @@ fn main() {
         s_all / hair.len() as f64,
         n_tip,
         s_tip / n_tip as f64,
-        cov.covered_fraction()
+        probe.cov.covered_fraction()
     );
     println!(
         "background seen through hair pixels (mean): all {:.4?} bottom fifth {:.4?}",
@@ -81,39 +115,18 @@ fn main() {
 
 /// Writes min(raster, true) coverage of every pixel to `path` (the mask of a fair comparison).
 pub fn write_mask(path: &str, groom: Option<&String>) {
-    let (w, h) = (360usize, 240usize);
-    let mut spec = SceneSpec::default();
-    if let Some(g) = groom {
-        spec.groom = g.clone();
-    }
-    let scene = Scene::load_without_lights(spec).unwrap();
-    let accel = Accel::build(&scene.groom);
-    let view = scene.camera.view(w, h);
-    let cov = rasterize(&scene.groom, &view, w, h, 3);
-    let n = 8;
-    let px: Vec<glam::DVec3> = (0..w * h)
+    let probe = Probe::load(groom);
+    let w = SIZE.0;
+    let px: Vec<DVec3> = (0..SIZE.0 * SIZE.1)
         .into_par_iter()
         .map(|k| {
-            let (x, y) = ((k % w) as f64, (k / w) as f64);
-            let mut hits = 0;
-            for i in 0..n {
-                for j in 0..n {
-                    let d = view.ray(
-                        x + (i as f64 + 0.5) / n as f64,
-                        y + (j as f64 + 0.5) / n as f64,
-                    );
-                    if accel.closest(view.eye, d).is_some() {
-                        hits += 1;
-                    }
-                }
-            }
-            let c = (hits as f64 / (n * n) as f64).min(cov.pixel_fraction(k % w, k / w));
-            glam::DVec3::splat(c)
+            let raster = probe.cov.pixel_fraction(k % w, k / w);
+            DVec3::splat(probe.true_pixel(k).coverage.min(raster))
         })
         .collect();
     std::fs::write(
         path,
-        cuticle_light::image_file::exr_bytes(w, h, &px).unwrap(),
+        cuticle_light::image_file::exr_bytes(SIZE.0, SIZE.1, &px).unwrap(),
     )
     .unwrap();
 }
