@@ -532,7 +532,7 @@ impl GpuRenderer {
             frame.passes.table_uploads += 1;
         }
         if scene.spec.multiple {
-            let back = self.cpu.back_scattering(&fiber, hair.d_b);
+            let back = self.cpu.back_scattering(&fiber);
             if frame
                 .back
                 .as_ref()

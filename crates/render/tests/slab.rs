@@ -249,7 +249,7 @@ impl<'a> Terms<'a> {
             renderer,
             fiber,
             half: ExactHalfCircle::build(fiber.eta),
-            back: BackScatteringTables::build(&fiber, d_b),
+            back: BackScatteringTables::build(&fiber),
             d_b,
         }
     }
@@ -429,7 +429,7 @@ fn check_direct(traced: &Traced, b: &Rendered) {
 
 /// Light fibers (μ_a = 0.1, 0.2, 0.4): dual scattering's whole multiple scattering, brute
 /// force and SRBF, within 20 % of the path trace per channel, lit from the camera's side and
-/// from behind the slab (measured 0.94–0.97 and 1.01–1.18 for the brute force, 0.96–0.99 and
+/// from behind the slab (measured 1.04–1.18 and 1.00–1.18 for the brute force, 0.97–1.11 and
 /// 0.95–1.15 for SRBF). Before the Poisson T_f and f_back's factor 2 it was 0.29–0.55 in
 /// front (the local term half of the trace's, and no global term within the first half
 /// crossing).
@@ -458,9 +458,12 @@ fn light_fibers_multiple_scattering_matches_a_path_trace() {
 /// Dark fibers (μ_a = 1, 2, 4), where ā_f = 0.17, 0.06, 0.04 lies below e^{−1} and the old
 /// T_f = ā_f^n fell below T̃ = e^{−n}, leaving no global term at all: now the global term of
 /// the light crossing the slab is within 20 % of the trace's forward-only paths for μ_a = 1
-/// and 2 (measured 0.93 and 1.12; μ_a = 4 carries 10⁻⁵ of the light and is left out), and
-/// the whole multiple scattering in front is within [0.4, 1.2] of the trace's (measured
-/// 0.50–0.75): Zinke's Ā_b ∝ ā_f² leaves out most of what dark neighbours back-scatter.
+/// and 2 (measured 0.94 and 1.12; μ_a = 4 carries 10⁻⁵ of the light and is left out), and
+/// the whole multiple scattering in front is within 25 % of the trace's (measured
+/// 0.96 / 0.88 / 1.20 brute, 0.91 / 0.85 / 1.14 SRBF). With Zinke et al. 2008's Ā_b ∝ ā_f²
+/// it was 0.50–0.75: a lattice that sends light back through the fibers it came by leaves out
+/// most of what dark neighbours back-scatter, and the Poisson medium's Ā_b ∝ ā_f does not
+/// (tables/back_scattering.rs).
 #[test]
 fn dark_fibers_global_term_matches_a_path_trace() {
     let r = Renderer::new();
@@ -481,32 +484,27 @@ fn dark_fibers_global_term_matches_a_path_trace() {
     within(
         b.multiple,
         traced.multiple(),
-        (0.4, 1.2),
+        (0.8, 1.25),
         "brute, front-lit",
     );
-    within(s.multiple, traced.multiple(), (0.4, 1.2), "srbf, front-lit");
+    within(
+        s.multiple,
+        traced.multiple(),
+        (0.8, 1.25),
+        "srbf, front-lit",
+    );
 }
 
-/// The default brown fiber (μ_a = 0.3, 0.5, 0.9), lit from the camera's side: red and green
-/// within 20 % (measured 0.95, 0.88 brute; 0.97, 0.91 SRBF), blue within 40 % (0.67, 0.70);
-/// before the fixes 0.07–0.49.
+/// The default brown fiber (μ_a = 0.3, 0.5, 0.9), lit from the camera's side: within 20 %
+/// per channel (measured 1.18 / 1.16 / 1.01 brute, 1.11 / 1.10 / 0.97 SRBF); with Zinke et
+/// al. 2008's Ā_b blue was 0.67 / 0.70, and before the Poisson T_f 0.07–0.49.
 #[test]
 fn brown_fibers_multiple_scattering_matches_a_path_trace() {
     let r = Renderer::new();
     let (traced, b, s) = compare(&r, [0.3, 0.5, 0.9], &FRONT, "brown, front-lit");
     check_direct(&traced, &b);
     for (got, name) in [(b.multiple, "brute"), (s.multiple, "srbf")] {
-        within(
-            got * DVec3::new(1.0, 1.0, 0.0) + traced.multiple() * DVec3::Z,
-            traced.multiple(),
-            (0.8, 1.2),
-            name,
-        );
-        assert!(
-            (0.6..1.2).contains(&(got.z / traced.multiple().z)),
-            "{name} blue: {got} vs {}",
-            traced.multiple()
-        );
+        within(got, traced.multiple(), (0.8, 1.2), name);
     }
 }
 

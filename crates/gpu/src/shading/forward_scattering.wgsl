@@ -13,32 +13,47 @@ struct Averages {
     back_width: f32,
 }
 
-// averages_from_moments: [ā_f, β̄_f², Ā_b, Δ̄_b, σ̄_b] from [ā_f, ā_b, α_f, α_b, β_f², β_b²]
-// (Zinke et al. 2008).
-fn averages_from_moments(m: array<f32, 6>, d_b: f32) -> Averages {
+// back_scattering.rs's BackPaths: A_k and n̄_k of the paths back-scattered k times.
+struct BackPaths {
+    events: f32,
+    weight: f32,
+    forward_crossings: f32,
+}
+
+// back_paths: A₁ and A₃ of a Poisson medium of fibers, with their mean forward crossings.
+fn back_paths(af: f32, ab: f32) -> array<BackPaths, 2> {
+    let open = 1.0 - af;
+    return array<BackPaths, 2>(
+        BackPaths(1.0, af * ab / (2.0 * open), 1.0 / open),
+        BackPaths(3.0, af * ab * ab * ab / (8.0 * open * open * open), 1.0 + 3.0 * af / open),
+    );
+}
+
+// averages_from_moments: [ā_f, β̄_f², Ā_b, Δ̄_b, σ̄_b] from [ā_f, ā_b, α_f, α_b, β_f², β_b²].
+fn averages_from_moments(m: array<f32, 6>) -> Averages {
     let af = clamp(m[0], 0.0, MAX_FORWARD);
     let ab = max(m[1], 0.0);
     let alpha_f = m[2];
     let alpha_b = m[3];
-    let beta_f2 = m[4];
-    let beta_b2 = m[5];
-    let af2 = af * af;
-    let ab2 = ab * ab;
-    let one = 1.0 - af2;
-    let one3 = one * one * one;
-    let big_ab = ab * af2 / one + ab * ab2 * af2 / one3;
-    let shift = alpha_b * (1.0 - 2.0 * ab2 / (one * one)) + alpha_f * (2.0 * one * one + 4.0 * af2 * ab2) / one3;
-    let bf = sqrt(max(beta_f2, 0.0));
-    let bb = sqrt(max(beta_b2, 0.0));
-    let width_num = ab * sqrt(2.0 * beta_f2 + beta_b2) + ab * ab2 * sqrt(2.0 * beta_f2 + 3.0 * beta_b2);
-    let width_den = ab + ab * ab2 * (2.0 * bf + 3.0 * bb);
-    var width: f32;
-    if (width_den > 1e-30) {
-        width = (1.0 + d_b * af2) * width_num / width_den;
-    } else {
-        width = sqrt(2.0 * beta_f2 + beta_b2);
+    let beta_f2 = max(m[4], 0.0);
+    let beta_b2 = max(m[5], 0.0);
+    // Written out over the two paths rather than looped: llvmpipe caps the loop iterations of
+    // one invocation (shading::loop_cost counts the loops that remain).
+    let paths = back_paths(af, ab);
+    let one = paths[0];
+    let three = paths[1];
+    let shift_one = one.events * alpha_b + one.forward_crossings * alpha_f;
+    let variance_one = one.events * beta_b2 + one.forward_crossings * beta_f2;
+    let big_ab = one.weight + three.weight;
+    var shift = shift_one;
+    var variance = variance_one;
+    if (big_ab > 1e-30) {
+        shift = (one.weight * shift_one
+            + three.weight * (three.events * alpha_b + three.forward_crossings * alpha_f)) / big_ab;
+        variance = (one.weight * variance_one
+            + three.weight * (three.events * beta_b2 + three.forward_crossings * beta_f2)) / big_ab;
     }
-    return Averages(af, beta_f2, big_ab, shift, max(width, 1e-4));
+    return Averages(af, beta_f2, big_ab, shift, max(sqrt(variance), 1e-4));
 }
 
 // BackScatteringTables::at_coordinate: the averages at |θ_d| for absorption coordinate x.
@@ -50,7 +65,7 @@ fn back_at_coordinate(theta_d: f32, x: f32) -> Averages {
     for (var k = 0u; k < 6u; k++) {
         m[k] = back_at(GRID_BACK, cx, cy, k);
     }
-    return averages_from_moments(m, params.d_b);
+    return averages_from_moments(m);
 }
 
 // forward_scattering.rs's Forward: the scattered share d_f (T_f − T̃)⁺ and the variance σ̄_f².

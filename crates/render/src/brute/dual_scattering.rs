@@ -288,11 +288,7 @@ mod tests {
             ..HairParams::default()
         };
         let fiber = hair.fiber(None);
-        (
-            fiber,
-            BackScatteringTables::build(&fiber, hair.d_b),
-            hair.d_b,
-        )
+        (fiber, BackScatteringTables::build(&fiber), hair.d_b)
     }
 
     /// The tabulated, Gauss–Legendre terms against [`direct`], per channel, for lights in

@@ -99,8 +99,7 @@ pub struct Renderer {
     pub table_seconds: f64,
     /// Rebuilt when η or the caustic parameters change (absorption is one of its axes).
     lobes: Arc<LastBuilt<(f64, TrtShape), LobeTable>>,
-    /// Rebuilt when any parameter but absorption (one of its axes) changes; d_b only enters
-    /// after the lookup.
+    /// Rebuilt when any parameter but absorption (one of its axes) changes.
     back: Arc<LastBuilt<MarschnerParams, BackScatteringTables>>,
 }
 
@@ -141,21 +140,15 @@ impl Renderer {
         }
     }
 
-    /// The back-scattering tables of `fiber`'s parameters but absorption, and `d_b` (which
-    /// changes no entry: a d_b edit reuses the built ones).
-    pub fn back_scattering(&self, fiber: &MarschnerParams, d_b: f64) -> Arc<BackScatteringTables> {
+    /// The back-scattering tables of `fiber`'s parameters but absorption (d_b enters none:
+    /// a d_b edit reuses the built ones).
+    pub fn back_scattering(&self, fiber: &MarschnerParams) -> Arc<BackScatteringTables> {
         let key = MarschnerParams {
             mu_a: DVec3::ZERO,
             ..*fiber
         };
-        let built = self
-            .back
-            .get_or_build(key, || BackScatteringTables::build(fiber, d_b));
-        if built.d_b() == d_b {
-            built
-        } else {
-            Arc::new(built.with_d_b(d_b))
-        }
+        self.back
+            .get_or_build(key, || BackScatteringTables::build(fiber))
     }
 
     /// Whether this renderer renders `scene`'s method: [`Method::Path`] belongs to the path
@@ -265,7 +258,7 @@ impl Renderer {
             .collect();
         let hair = &scene.spec.hair;
         let multiple = scene.spec.multiple;
-        let back = multiple.then(|| self.back_scattering(&hair.fiber(None), hair.d_b));
+        let back = multiple.then(|| self.back_scattering(&hair.fiber(None)));
         let (lobes, exact_half) = match scene.spec.method {
             Method::Srbf => (Some(self.lobe_table(&hair.fiber(None))), None),
             Method::Brute | Method::Path => {

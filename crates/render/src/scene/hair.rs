@@ -54,7 +54,7 @@ impl Default for HairParams {
             eccentricity: 1.0,
             caustic_width_deg: DEFAULT_CAUSTIC_WIDTH_DEG,
             caustic_fade: m.caustic_fade,
-            d_b: 0.7,
+            d_b: 0.6,
         }
     }
 }
