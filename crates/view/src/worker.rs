@@ -89,6 +89,18 @@ struct PrepareKey {
 }
 
 impl PrepareKey {
+    /// Whether `next` differs from this key in its lights alone.
+    fn lights_only(&self, next: &Self) -> bool {
+        let same_but_lights = Self {
+            revisions: Revisions {
+                lights: next.revisions.lights,
+                ..self.revisions
+            },
+            ..self.clone()
+        };
+        self.revisions.lights != next.revisions.lights && same_but_lights == *next
+    }
+
     fn of(scene: &Scene, revisions: Revisions) -> Self {
         let s = &scene.spec;
         Self {
@@ -128,8 +140,13 @@ impl Slot {
             return Ok(None);
         }
         let start = Instant::now();
+        let relight = self.key.as_ref().is_some_and(|k| k.lights_only(&key));
         self.key = None;
-        self.shading.prepare(scene)?;
+        if relight {
+            self.shading.relight(scene)?;
+        } else {
+            self.shading.prepare(scene)?;
+        }
         self.strands = Arc::new(self.shading.strands());
         self.key = Some(key);
         Ok(Some(start.elapsed().as_secs_f64()))
@@ -342,4 +359,76 @@ fn render(
         strands_updated: slot.shading.strands_updated(),
         shadow_passes: slot.shading.shadow_passes(),
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cuticle_render::SceneSpec;
+    use std::sync::atomic::AtomicUsize;
+
+    /// Counts the preparations and relightings it is asked for.
+    #[derive(Clone, Default)]
+    struct Counting {
+        prepares: Arc<AtomicUsize>,
+        relights: Arc<AtomicUsize>,
+    }
+
+    impl Shading for Counting {
+        fn backend(&self) -> String {
+            "counting".into()
+        }
+        fn prepare(&mut self, _: &Scene) -> Result<(), String> {
+            self.prepares.fetch_add(1, Ordering::SeqCst);
+            Ok(())
+        }
+        fn relight(&mut self, _: &Scene) -> Result<(), String> {
+            self.relights.fetch_add(1, Ordering::SeqCst);
+            Ok(())
+        }
+        fn shade(&mut self, _: &Scene, _: &AtomicBool) -> Result<Option<Image>, String> {
+            Ok(None)
+        }
+        fn strands(&self) -> StrandBuffer {
+            StrandBuffer::default()
+        }
+    }
+
+    /// New lights alone relight the kept preparation; new lights with anything else, or a
+    /// first request, prepare; nothing new does neither.
+    #[test]
+    fn only_new_lights_relight() {
+        let spec = SceneSpec {
+            strands: 4,
+            width: 16,
+            height: 12,
+            lights: 2,
+            ..SceneSpec::default()
+        };
+        let mut scene = Scene::load(spec, None).expect("the test scene loads");
+        let counting = Counting::default();
+        let mut slot = Slot::new(Box::new(counting.clone()));
+        let counts = || {
+            (
+                counting.prepares.load(Ordering::SeqCst),
+                counting.relights.load(Ordering::SeqCst),
+            )
+        };
+        let mut revisions = Revisions::default();
+        slot.prepare(&scene, revisions).unwrap();
+        assert_eq!(counts(), (1, 0), "a first request prepares");
+        slot.prepare(&scene, revisions).unwrap();
+        assert_eq!(counts(), (1, 0), "nothing new");
+        revisions.lights += 1;
+        slot.prepare(&scene, revisions).unwrap();
+        assert_eq!(counts(), (1, 1), "new lights relight");
+        revisions.lights += 1;
+        scene.spec.width += 1;
+        slot.prepare(&scene, revisions).unwrap();
+        assert_eq!(counts(), (2, 1), "new lights and a new size prepare");
+        revisions.lights += 1;
+        revisions.groom += 1;
+        slot.prepare(&scene, revisions).unwrap();
+        assert_eq!(counts(), (3, 1), "new lights and a new groom prepare");
+    }
 }

@@ -1,5 +1,6 @@
 //! The GPU back end (crate `cuticle-gpu`) behind [`Shading`]: drawing and shadows by its
-//! `prepare`, shading and resolve by its `shade`, a paint stroke written through
+//! `prepare` (shadows alone by `relight` when only the lights changed), shading and resolve by
+//! its `shade`, a paint stroke written through
 //! `update_strands` for the strands it changed only.
 
 use crate::shading::{NO_STRAND, Shading, StrandBuffer};
@@ -80,6 +81,20 @@ impl Shading for GpuShading {
         self.updated = 0;
         self.frame = Some(self.renderer.prepare(scene).map_err(|e| e.to_string())?);
         self.source = Some(StrandSource::of(scene));
+        Ok(())
+    }
+
+    /// `GpuRenderer::relight` on the kept frame: new opacity maps, shadows and background,
+    /// the drawing, tables and strand records kept.
+    fn relight(&mut self, scene: &Scene) -> Result<(), String> {
+        let Some(frame) = self.frame.as_mut() else {
+            return self.prepare(scene);
+        };
+        self.updated = 0;
+        if let Err(e) = self.renderer.relight(frame, scene) {
+            self.frame = None;
+            return Err(e.to_string());
+        }
         Ok(())
     }
 

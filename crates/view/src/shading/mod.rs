@@ -4,7 +4,8 @@
 //!
 //! - [`Shading::prepare`]: visibility, background and shadows for the scene's camera, groom and
 //!   lights (a camera move, a new groom or new lights re-run it; the CPU back end keeps the
-//!   shadows, which do not depend on the camera);
+//!   shadows, which do not depend on the camera); [`Shading::relight`] for new lights alone
+//!   (the GPU back end keeps its drawing);
 //! - [`Shading::shade`]: L_o at the visible points for the scene's hair parameters and
 //!   per-strand absorption, resolved into pixels, on the kept preparation (an edit of the hair
 //!   or a paint stroke re-runs only this), given up when a newer edit makes it stale;
@@ -47,6 +48,12 @@ pub trait Shading: Send {
     /// Stages 2–3 of the frame for `scene`: what stays valid while only the hair changes; an
     /// error (one line) when the back end cannot render the scene.
     fn prepare(&mut self, scene: &Scene) -> Result<(), String>;
+    /// [`Self::prepare`] for new lights alone (a rotated or re-fitted environment) with the
+    /// camera, groom, size and shadow settings of the last preparation: a back end that can
+    /// keep its drawing re-does only the shadows and the background.
+    fn relight(&mut self, scene: &Scene) -> Result<(), String> {
+        self.prepare(scene)
+    }
     /// Stages 4–5 on the last preparation; `None` when `cancel` was set before it finished (or
     /// nothing is prepared).
     fn shade(&mut self, scene: &Scene, cancel: &AtomicBool) -> Result<Option<Image>, String>;
