@@ -13,6 +13,7 @@ use crate::frame::progress::{Counter, Progress};
 use crate::frame::raster::{Coverage, EMPTY, rasterize};
 use crate::frame::shadow::{ShadowOptions, transmittance};
 use crate::frame::sub_lights::split_wide;
+use crate::preview::PREVIEW_TABLE_NODES;
 use crate::scene::camera::View;
 use crate::scene::{Lobes, Method, Scene, light_to_world};
 use crate::srbf::cg_lobes::TrtShape;
@@ -88,6 +89,8 @@ pub struct TableBuilds {
     pub lobes: u64,
     /// [`BackScatteringTables`] (a parameter other than absorption changed).
     pub back_scattering: u64,
+    /// The coarse [`BackScatteringTables`] of a preview renderer ([`Renderer::for_preview`]).
+    pub preview_back_scattering: u64,
 }
 
 /// The renderer: its tables, built once, and the lobe table of the last hair parameters.
@@ -102,6 +105,11 @@ pub struct Renderer {
     /// Rebuilt when any parameter but absorption (one of its axes) changes; d_b only enters
     /// after the lookup.
     back: Arc<LastBuilt<MarschnerParams, BackScatteringTables>>,
+    /// The same on [`PREVIEW_TABLE_NODES`]², for a preview renderer (kept apart, so that a
+    /// preview and a full frame of one edit each build theirs once).
+    preview_back: Arc<LastBuilt<MarschnerParams, BackScatteringTables>>,
+    /// Whether this renderer shades with the coarse back-scattering tables.
+    preview: bool,
 }
 
 impl Default for Renderer {
@@ -123,7 +131,24 @@ impl Renderer {
             table_seconds: start.elapsed().as_secs_f64(),
             lobes: Arc::default(),
             back: Arc::default(),
+            preview_back: Arc::default(),
+            preview: false,
         }
+    }
+
+    /// A renderer for preview frames ([`crate::preview`]): the same tables and caches, but
+    /// back-scattering tables built on a [`PREVIEW_TABLE_NODES`]² grid, so that an edit
+    /// that rebuilds them costs a preview little.
+    pub fn for_preview(&self) -> Self {
+        Self {
+            preview: true,
+            ..self.clone()
+        }
+    }
+
+    /// Whether this renderer is one of [`Self::for_preview`].
+    pub fn is_preview(&self) -> bool {
+        self.preview
     }
 
     /// The lobe table of `fiber`'s η and caustics.
@@ -138,19 +163,25 @@ impl Renderer {
         TableBuilds {
             lobes: self.lobes.builds(),
             back_scattering: self.back.builds(),
+            preview_back_scattering: self.preview_back.builds(),
         }
     }
 
     /// The back-scattering tables of `fiber`'s parameters but absorption, and `d_b` (which
-    /// changes no entry: a d_b edit reuses the built ones).
+    /// changes no entry: a d_b edit reuses the built ones); coarse ones for a preview renderer.
     pub fn back_scattering(&self, fiber: &MarschnerParams, d_b: f64) -> Arc<BackScatteringTables> {
         let key = MarschnerParams {
             mu_a: DVec3::ZERO,
             ..*fiber
         };
-        let built = self
-            .back
-            .get_or_build(key, || BackScatteringTables::build(fiber, d_b));
+        let built = if self.preview {
+            self.preview_back.get_or_build(key, || {
+                BackScatteringTables::build_at(fiber, d_b, PREVIEW_TABLE_NODES)
+            })
+        } else {
+            self.back
+                .get_or_build(key, || BackScatteringTables::build(fiber, d_b))
+        };
         if built.d_b() == d_b {
             built
         } else {
