@@ -35,6 +35,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// `--preview-only`), the preview's size, and how many of the frames re-ran the preparation.
 struct Latency {
     preview: f64,
+    /// Seconds of the preview's shading and resolve (the rest of `preview` is its scene,
+    /// preparation when it re-ran, and hand-over).
+    preview_shade: f64,
     full: Option<f64>,
     preview_size: (usize, usize),
     prepared: usize,
@@ -93,18 +96,21 @@ fn main() {
                             Quality::Preview if preview_only => {
                                 return Latency {
                                     preview: f.latency_s,
+                                    preview_shade: f.shade_s,
                                     full: None,
                                     preview_size: (f.image.width, f.image.height),
                                     prepared,
                                 };
                             }
                             Quality::Preview => {
-                                preview = Some((f.latency_s, (f.image.width, f.image.height)))
+                                preview =
+                                    Some((f.latency_s, f.shade_s, (f.image.width, f.image.height)))
                             }
                             Quality::Full => {
-                                let (p, size) = preview.expect("the preview comes first");
+                                let (p, shade, size) = preview.expect("the preview comes first");
                                 return Latency {
                                     preview: p,
+                                    preview_shade: shade,
                                     full: Some(f.latency_s),
                                     preview_size: size,
                                     prepared,
@@ -127,12 +133,14 @@ fn main() {
         ms(first.full)
     );
     let mut report = |name: &str, edit: &dyn Fn(&mut Look, usize)| {
-        let (mut p, mut f, mut size, mut prepared) = (Vec::new(), Vec::new(), (0, 0), 0);
+        let (mut p, mut ps, mut f, mut size, mut prepared) =
+            (Vec::new(), Vec::new(), Vec::new(), (0, 0), 0);
         let builds = renderer.table_builds();
         for k in 0..edits {
             edit(&mut look, k);
             let l = run(&look);
             p.push(l.preview);
+            ps.push(l.preview_shade);
             f.extend(l.full);
             size = l.preview_size;
             prepared += l.prepared;
@@ -141,11 +149,12 @@ fn main() {
         let frames = if preview_only { edits } else { 2 * edits };
         let full = (!f.is_empty()).then(|| median(f));
         println!(
-            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}), full-quality frame {}; \
+            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}, its shading {:.0} ms), full-quality frame {}; \
              {prepared} of {frames} frames re-prepared, {} lobe-table, {} back-scattering and {} preview back-scattering builds",
             1e3 * median(p),
             size.0,
             size.1,
+            1e3 * median(ps),
             ms(full),
             after.lobes - builds.lobes,
             after.back_scattering - builds.back_scattering,
