@@ -2,11 +2,13 @@
 //! frame's lights are the fitted narrow ones plus the sub-lights the wide ones are split into
 //! ([`crate::frame::sub_lights`]), several dozen in all.
 //!
-//! Merging is agglomerative (Ward 1963's rule with the L2 distance of radiance): starting from
-//! one group per light, the two groups whose merge changes the radiance Σ L_j G_j over the
-//! sphere least, ‖M_a + M_b − M_ab‖², are merged until `count` remain (the squared norms are
-//! closed forms, ∫ (L_a G_a)(L_b G_b) dω, [`SrbfLight::inner_product`]). A bright narrow light
-//! (the sun) thus stays itself, and the dim sub-lights of a sky merge into a few broad lobes.
+//! Merging is agglomerative, as Ward 1963's grouping (each step merges the pair that costs the
+//! objective least), the objective the L2 distance of radiance: starting from one group per
+//! light, the two groups whose merge changes the radiance Σ L_j G_j over the sphere least,
+//! ‖M_a + M_b − M_ab‖² (M the groups' merged lights), are merged until `count` remain (the
+//! squared norms are closed forms, ∫ (L_a G_a)(L_b G_b) dω, [`SrbfLight::inner_product`]). A
+//! bright narrow light (the sun) thus stays itself, and the dim sub-lights of a sky merge into
+//! a few broad lobes.
 //!
 //! A group becomes one SRBF light by moment matching, the reduction of von Mises–Fisher
 //! mixtures (Banerjee et al. 2005 §2, §4): G(ω; ω_j, λ_j) normalised is a vMF density of
@@ -158,7 +160,7 @@ fn mean_cosine_slope(kappa: f64) -> f64 {
 }
 
 /// A⁻¹(r): the concentration whose mean cosine is `r` ∈ [0, 1): Banerjee et al. 2005's
-/// estimate κ ≈ r(3 − r²)/(1 − r²) (their eq. 4.4 with d = 3), refined by Newton steps.
+/// estimate κ ≈ r(d − r²)/(1 − r²) (§4.1, here d = 3), refined by Newton steps.
 pub fn concentration(r: f64) -> f64 {
     let r = r.clamp(1e-9, 1.0 - 1e-12);
     let mut kappa = r * (3.0 - r * r) / (1.0 - r * r);
