@@ -23,6 +23,7 @@
 //!   and dual scattering.
 //! - [`brute`]: the reference twins of [`srbf`]'s files, with matching names, from the exact
 //!   functions against the map as directional lights (`--method brute`).
+//! - [`preview`]: what a live window's quick first frame after an edit leaves out.
 //! - [`angles`], [`fresnel`]: the small fiber optics both paths share; [`mod@bench`]: the paper's
 //!   workload timed.
 
@@ -31,6 +32,7 @@ pub mod bench;
 pub mod brute;
 pub mod frame;
 pub mod fresnel;
+pub mod preview;
 pub mod scene;
 pub mod srbf;
 pub mod tables;

@@ -3,9 +3,11 @@
 //! first frame (the preview) and to its full-quality frame, for edits of the hair (absorption,
 //! β_R) and paint strokes (shading only) and for camera moves (preparation again). Medians of
 //! `--edits K`, with the preparations the edits re-ran and the tables they rebuilt (counts).
+//! `--preview-only` asks as a window does while input moves (the worker stops at the
+//! preview), so that each edit's time is the first updated frame's alone.
 //!
-//! `cargo bench -p cuticle-view --bench latency -- --edits 5 [--device cpu|gpu|auto]` (the CPU
-//! renderer unless `--device` says otherwise).
+//! `cargo bench -p cuticle-view --bench latency -- --edits 5 [--device cpu|gpu|auto]
+//! [--preview-only]` (the CPU renderer unless `--device` says otherwise).
 
 use cuticle_render::{Renderer, Scene, SceneSpec};
 use cuticle_view::look::Look;
@@ -29,11 +31,14 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Seconds from the request to its preview and to its full frame, the preview's size, and how
-/// many of the two frames re-ran the preparation.
+/// Seconds from the request to its preview and to its full frame (none with
+/// `--preview-only`), the preview's size, and how many of the frames re-ran the preparation.
 struct Latency {
     preview: f64,
-    full: f64,
+    /// Seconds of the preview's shading and resolve (the rest of `preview` is its scene,
+    /// preparation when it re-ran, and hand-over).
+    preview_shade: f64,
+    full: Option<f64>,
     preview_size: (usize, usize),
     prepared: usize,
 }
@@ -47,6 +52,7 @@ fn main() {
         ..defaults
     };
     let edits = arg("--edits", 5).max(1);
+    let preview_only = std::env::args().any(|a| a == "--preview-only");
     let look = Look::from_scene(Scene::load(spec, None).expect("the default scene loads"));
     let renderer = Renderer::new();
     let args: Vec<String> = std::env::args().collect();
@@ -75,7 +81,7 @@ fn main() {
             id,
             scene: look.scene(),
             revisions: look.revisions,
-            interacting: false,
+            interacting: preview_only,
             issued: Instant::now(),
         });
         let mut preview = None;
@@ -87,14 +93,25 @@ fn main() {
                     Report::Frame(f) if f.id == id => {
                         prepared += usize::from(f.prepared);
                         match f.quality {
+                            Quality::Preview if preview_only => {
+                                return Latency {
+                                    preview: f.latency_s,
+                                    preview_shade: f.shade_s,
+                                    full: None,
+                                    preview_size: (f.image.width, f.image.height),
+                                    prepared,
+                                };
+                            }
                             Quality::Preview => {
-                                preview = Some((f.latency_s, (f.image.width, f.image.height)))
+                                preview =
+                                    Some((f.latency_s, f.shade_s, (f.image.width, f.image.height)))
                             }
                             Quality::Full => {
-                                let (p, size) = preview.expect("the preview comes first");
+                                let (p, shade, size) = preview.expect("the preview comes first");
                                 return Latency {
                                     preview: p,
-                                    full: f.latency_s,
+                                    preview_shade: shade,
+                                    full: Some(f.latency_s),
                                     preview_size: size,
                                     prepared,
                                 };
@@ -108,34 +125,40 @@ fn main() {
         }
     };
     let mut look = look;
+    let ms = |s: Option<f64>| s.map_or("-".to_string(), |s| format!("{:.0} ms", 1e3 * s));
     let first = run(&look);
     println!(
-        "first frame (tables kept, preparation of both qualities): preview {:.0} ms, full {:.0} ms",
+        "first frame (tables kept, preparation of both qualities): preview {:.0} ms, full {}",
         1e3 * first.preview,
-        1e3 * first.full
+        ms(first.full)
     );
     let mut report = |name: &str, edit: &dyn Fn(&mut Look, usize)| {
-        let (mut p, mut f, mut size, mut prepared) = (Vec::new(), Vec::new(), (0, 0), 0);
+        let (mut p, mut ps, mut f, mut size, mut prepared) =
+            (Vec::new(), Vec::new(), Vec::new(), (0, 0), 0);
         let builds = renderer.table_builds();
         for k in 0..edits {
             edit(&mut look, k);
             let l = run(&look);
             p.push(l.preview);
-            f.push(l.full);
+            ps.push(l.preview_shade);
+            f.extend(l.full);
             size = l.preview_size;
             prepared += l.prepared;
         }
         let after = renderer.table_builds();
+        let frames = if preview_only { edits } else { 2 * edits };
+        let full = (!f.is_empty()).then(|| median(f));
         println!(
-            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}), full-quality frame {:.0} ms; \
-             {prepared} of {} frames re-prepared, {} lobe-table and {} back-scattering builds",
+            "{name}: median of {edits}: first updated frame {:.0} ms (preview {}x{}, its shading {:.0} ms), full-quality frame {}; \
+             {prepared} of {frames} frames re-prepared, {} lobe-table, {} back-scattering and {} preview back-scattering builds",
             1e3 * median(p),
             size.0,
             size.1,
-            1e3 * median(f),
-            2 * edits,
+            1e3 * median(ps),
+            ms(full),
             after.lobes - builds.lobes,
             after.back_scattering - builds.back_scattering,
+            after.preview_back_scattering - builds.preview_back_scattering,
         );
     };
     report("absorption edit", &|l, k| {

@@ -75,6 +75,8 @@ impl Bench {
                             let built = TableBuilds {
                                 lobes: after.lobes - before.lobes,
                                 back_scattering: after.back_scattering - before.back_scattering,
+                                preview_back_scattering: after.preview_back_scattering
+                                    - before.preview_back_scattering,
                             };
                             return (frames, built);
                         }
@@ -105,6 +107,7 @@ fn shadow_passes(frames: &[Frame]) -> u64 {
 const NONE: TableBuilds = TableBuilds {
     lobes: 0,
     back_scattering: 0,
+    preview_back_scattering: 0,
 };
 
 /// Absorption edits (all strands, and paint on some) and d_b re-run neither the preparation
@@ -143,9 +146,10 @@ fn each_edit_redoes_only_what_it_changes() {
         built,
         TableBuilds {
             lobes: 0,
-            back_scattering: 1
+            back_scattering: 1,
+            preview_back_scattering: 1,
         },
-        "β_R feeds the back-scattering tables only (both qualities share them)"
+        "β_R feeds the back-scattering tables only (the preview builds its coarse ones)"
     );
 
     look.spec.hair.d_b *= 0.5;
@@ -163,9 +167,10 @@ fn each_edit_redoes_only_what_it_changes() {
         built,
         TableBuilds {
             lobes: 1,
-            back_scattering: 1
+            back_scattering: 1,
+            preview_back_scattering: 1,
         },
-        "η feeds both tables"
+        "η feeds both tables (the lobe table shared by both qualities)"
     );
 
     assert_eq!(shadow_passes(&refracted), 2, "hair edits computed shadows");
@@ -205,7 +210,7 @@ fn kept_shadows_render_what_a_fresh_renderer_renders() {
 }
 
 /// The preview the worker shows first has fewer pixels than the full frame and one subsample,
-/// and its scene the strongest lights only and a coarser quadrature.
+/// and its scene the frame's lights merged into a few and a coarser quadrature.
 #[test]
 fn the_preview_is_cheaper_than_the_full_frame() {
     let look = look();

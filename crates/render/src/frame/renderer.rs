@@ -13,6 +13,7 @@ use crate::frame::progress::{Counter, Progress};
 use crate::frame::raster::{Coverage, EMPTY, rasterize};
 use crate::frame::shadow::{ShadowOptions, transmittance};
 use crate::frame::sub_lights::split_wide;
+use crate::preview::PREVIEW_TABLE_NODES;
 use crate::scene::camera::View;
 use crate::scene::{Lobes, Method, Scene, light_to_world};
 use crate::srbf::cg_lobes::TrtShape;
@@ -88,6 +89,8 @@ pub struct TableBuilds {
     pub lobes: u64,
     /// [`BackScatteringTables`] (a parameter other than absorption changed).
     pub back_scattering: u64,
+    /// The coarse [`BackScatteringTables`] of a preview renderer ([`Renderer::for_preview`]).
+    pub preview_back_scattering: u64,
 }
 
 /// The renderer: its tables, built once, and the lobe table of the last hair parameters.
@@ -101,6 +104,11 @@ pub struct Renderer {
     lobes: Arc<LastBuilt<(f64, TrtShape), LobeTable>>,
     /// Rebuilt when any parameter but absorption (one of its axes) changes.
     back: Arc<LastBuilt<MarschnerParams, BackScatteringTables>>,
+    /// The same on [`PREVIEW_TABLE_NODES`]², for a preview renderer (kept apart, so that a
+    /// preview and a full frame of one edit each build theirs once).
+    preview_back: Arc<LastBuilt<MarschnerParams, BackScatteringTables>>,
+    /// Whether this renderer shades with the coarse back-scattering tables.
+    preview: bool,
 }
 
 impl Default for Renderer {
@@ -122,7 +130,24 @@ impl Renderer {
             table_seconds: start.elapsed().as_secs_f64(),
             lobes: Arc::default(),
             back: Arc::default(),
+            preview_back: Arc::default(),
+            preview: false,
         }
+    }
+
+    /// A renderer for preview frames ([`crate::preview`]): the same tables and caches, but
+    /// back-scattering tables built on a [`PREVIEW_TABLE_NODES`]² grid, so that an edit
+    /// that rebuilds them costs a preview little.
+    pub fn for_preview(&self) -> Self {
+        Self {
+            preview: true,
+            ..self.clone()
+        }
+    }
+
+    /// Whether this renderer is one of [`Self::for_preview`].
+    pub fn is_preview(&self) -> bool {
+        self.preview
     }
 
     /// The lobe table of `fiber`'s η and caustics.
@@ -137,18 +162,25 @@ impl Renderer {
         TableBuilds {
             lobes: self.lobes.builds(),
             back_scattering: self.back.builds(),
+            preview_back_scattering: self.preview_back.builds(),
         }
     }
 
     /// The back-scattering tables of `fiber`'s parameters but absorption (d_b enters none:
-    /// a d_b edit reuses the built ones).
+    /// a d_b edit reuses the built ones); coarse ones for a preview renderer.
     pub fn back_scattering(&self, fiber: &MarschnerParams) -> Arc<BackScatteringTables> {
         let key = MarschnerParams {
             mu_a: DVec3::ZERO,
             ..*fiber
         };
-        self.back
-            .get_or_build(key, || BackScatteringTables::build(fiber))
+        if self.preview {
+            self.preview_back.get_or_build(key, || {
+                BackScatteringTables::build_at(fiber, PREVIEW_TABLE_NODES)
+            })
+        } else {
+            self.back
+                .get_or_build(key, || BackScatteringTables::build(fiber))
+        }
     }
 
     /// Whether this renderer renders `scene`'s method: [`Method::Path`] belongs to the path

@@ -169,9 +169,16 @@ pub fn moments(forward: [f64; 3], back: [f64; 3], lobes: [(f64, f64); 3]) -> [f6
 impl BackScatteringTables {
     /// Builds the tables for the global parameters of `fiber` (its absorption is an axis).
     pub fn build(fiber: &MarschnerParams) -> Self {
+        Self::build_at(fiber, NODES)
+    }
+
+    /// [`Self::build`] on `nodes` × `nodes` nodes (at least 2): a coarser grid costs less to
+    /// rebuild (a preview's, [`crate::preview::PREVIEW_TABLE_NODES`]).
+    pub fn build_at(fiber: &MarschnerParams, nodes: usize) -> Self {
+        let nodes = nodes.max(2);
         let grid = Grid2::build(
-            (NODES, 0.0, THETA_MAX),
-            (NODES, 0.0, absorption_axis::max_coordinate()),
+            (nodes, 0.0, THETA_MAX),
+            (nodes, 0.0, absorption_axis::max_coordinate()),
             |theta_d, x| entry(fiber, theta_d, absorption_axis::mu_a(x)),
         );
         Self { grid }

@@ -103,7 +103,7 @@ impl Shading for CpuShading {
 
     fn table_builds(&self) -> u64 {
         let b = self.renderer.table_builds();
-        b.lobes + b.back_scattering
+        b.lobes + b.back_scattering + b.preview_back_scattering
     }
 
     fn shade(&mut self, scene: &Scene, cancel: &AtomicBool) -> Result<Option<Image>, String> {

@@ -85,10 +85,11 @@ pub struct Backends {
 }
 
 impl Backends {
-    /// The CPU renderer at both qualities (a clone of `renderer` shares its tables).
+    /// The CPU renderer at both qualities, the preview's one [`Renderer::for_preview`] (each
+    /// shares `renderer`'s tables and caches).
     pub fn cpu(renderer: &Renderer) -> Self {
         Self {
-            preview: Box::new(cpu::CpuShading::new(renderer.clone())),
+            preview: Box::new(cpu::CpuShading::new(renderer.for_preview())),
             full: Box::new(cpu::CpuShading::new(renderer.clone())),
             gpu: false,
         }
