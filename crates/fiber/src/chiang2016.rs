@@ -144,11 +144,13 @@ impl Chiang2016 {
     #[inline]
     fn m_from(&self, si: f64, ci: f64, theta_o: f64) -> [f64; LOBES] {
         let (so, co) = sin_cos_quadrant(theta_o);
-        // The cone −θ_i + shift, by the angle-sum identities.
-        std::array::from_fn(|p| {
+        // The cone −θ_i + shift, by the angle-sum identities. Written out, not
+        // `array::from_fn`, whose closure the compiler kept as a call per lobe.
+        let m = |p: usize| {
             let (ss, cs) = self.shift_sin_cos[p];
             self.widths[p].eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
-        })
+        };
+        [m(0), m(1), m(2), m(3)]
     }
 
     /// What every lobe shares at offset h for light at θ_i: one sine and cosine of θ_i, the
@@ -170,10 +172,8 @@ impl Chiang2016 {
     /// N_p(φ; h) for every lobe.
     fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
         let k = 1.0 / self.trim;
-        std::array::from_fn(|p| match p {
-            3 => 0.5 / PI,
-            _ => logistic(wrap_pi(phi - at.deflection(p)), self.s) * k,
-        })
+        let n = |p: usize| logistic(wrap_pi(phi - at.deflection(p)), self.s) * k;
+        [n(0), n(1), n(2), 0.5 / PI]
     }
 
     /// M_p at θ_o for the θ_i of an offset.
