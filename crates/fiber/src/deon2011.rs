@@ -24,7 +24,7 @@ use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
-use crate::special::{cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
+use crate::special::{asin_fast, cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
 use crate::table::AzimuthalTable;
 use glam::{DVec3, Vec4};
 use std::f64::consts::PI;
@@ -242,9 +242,8 @@ impl DEon2011 {
         let (width, ss, cs) = self.prepared[p.min(3)];
         // The cone −θ_i + shift, by the angle-sum identities.
         let (si, ci) = (inc.si, inc.ci);
-        let theta_o = width
-            .sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3])
-            .asin();
+        let theta_o =
+            asin_fast(width.sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3]));
         let (so, co) = sin_cos_quadrant(theta_o);
         let eta_ratio = table.eta_ratio_from_cos_2d(ci * co + si * so);
         let eta_p = self.azimuthal.eta / eta_ratio;
@@ -265,13 +264,21 @@ impl DEon2011 {
     /// M_p from sin θ_i, cos θ_i, sin θ_o, cos θ_o.
     #[inline]
     fn m_from(&self, si: f64, ci: f64, so: f64, co: f64) -> [f64; 4] {
-        // The cone −θ_i + shift, by the angle-sum identities. Written out, not
-        // `array::from_fn`, whose closure the compiler kept as a call per lobe.
-        let m = |p: usize| {
-            let (width, ss, cs) = self.prepared[p];
-            width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
-        };
-        [m(0), m(1), m(2), m(3)]
+        // Written out, not `array::from_fn` or a closure, which the compiler kept as a call
+        // per lobe (its arguments through memory).
+        [
+            self.m_lobe(0, si, ci, so, co),
+            self.m_lobe(1, si, ci, so, co),
+            self.m_lobe(2, si, ci, so, co),
+            self.m_lobe(3, si, ci, so, co),
+        ]
+    }
+
+    /// M_p of one lobe; the cone −θ_i + shift by the angle-sum identities.
+    #[inline(always)]
+    fn m_lobe(&self, p: usize, si: f64, ci: f64, so: f64, co: f64) -> f64 {
+        let (width, ss, cs) = self.prepared[p];
+        width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
     }
 
     /// The longitudinal lobe of mode p for light at θ_i.
@@ -302,9 +309,8 @@ impl FiberModel for DEon2011 {
         let (si, ci) = sin_cos_quadrant(wi.theta);
         let (width, ss, cs) = self.prepared[p.min(3)];
         // The cone −θ_i + shift, by the angle-sum identities.
-        let theta_o = width
-            .sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3])
-            .asin();
+        let theta_o =
+            asin_fast(width.sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3]));
         let theta_d = 0.5 * (theta_o - wi.theta);
         let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));

@@ -8,7 +8,7 @@
 //! cosine is part of the measure, so M carries no such factor.
 
 use crate::special::{
-    I0_AS_SPLIT, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
+    I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
 };
 use std::f64::consts::PI;
 
@@ -41,7 +41,7 @@ impl LongitudinalLobe {
     /// cosine w of the angle to the cone's central direction, then an azimuth ψ about it.
     pub fn sample(&self, u1: f64, u2: f64) -> f64 {
         let (sc, cc) = self.theta_cone.sin_cos();
-        sample_sin_o(self.v, (-2.0 / self.v).exp(), sc, cc, u1, u2).asin()
+        asin_fast(sample_sin_o(self.v, (-2.0 / self.v).exp(), sc, cc, u1, u2))
     }
 }
 
