@@ -92,14 +92,20 @@ pub fn attenuation_at(inc: Inclination, h: f64, mu_a: DVec3) -> LobeValues {
 pub fn mean_total_attenuation(inc: Inclination, h: f64, mu_a: DVec3) -> (f64, f64) {
     let h = h.clamp(-1.0, 1.0);
     let f = inc.fresnel(h);
-    let chord = inc.chord(h);
+    (f, mean_total_attenuation_with(inc, f, h, mu_a))
+}
+
+/// The total of [`mean_total_attenuation`] for a Fresnel factor f at h the caller already
+/// has (a model that found it from cos γ_i directly).
+#[inline]
+pub fn mean_total_attenuation_with(inc: Inclination, f: f64, h: f64, mu_a: DVec3) -> f64 {
+    let chord = inc.chord(h.clamp(-1.0, 1.0));
     let k = (1.0 - f) * (1.0 - f);
     let through = |mu: f64| {
         let t = exp_fast(-mu * chord);
         k * t / (1.0 - f * t).max(1e-300)
     };
-    let total = f + (through(mu_a.x) + through(mu_a.y) + through(mu_a.z)) / 3.0;
-    (f, total)
+    f + (through(mu_a.x) + through(mu_a.y) + through(mu_a.z)) / 3.0
 }
 
 #[cfg(test)]

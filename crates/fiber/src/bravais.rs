@@ -1,7 +1,7 @@
 //! Geometry of a smooth circular fiber in the Bravais picture: the projected indices η′ and η″,
 //! the refracted offsets, the azimuthal deflection Φ(p, h) and the internal path length.
 
-use crate::special::{exp_fast, sin_cos_quadrant};
+use crate::special::{asin_fast, exp_fast, sin_cos_quadrant};
 use std::f64::consts::PI;
 
 /// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
@@ -18,13 +18,13 @@ pub fn eta_double_prime(eta: f64, theta: f64) -> f64 {
 
 /// γ_t = asin(h / η′), the refracted azimuthal angle inside the fiber.
 pub fn gamma_t(h: f64, eta_prime: f64) -> f64 {
-    (h / eta_prime).clamp(-1.0, 1.0).asin()
+    asin_fast((h / eta_prime).clamp(-1.0, 1.0))
 }
 
 /// Φ(p, h) = 2pγ_t − 2γ_i + pπ (d'Eon et al. 2014 eq. 3), unwrapped.
 pub fn azimuthal_deflection(p: u32, h: f64, eta_prime: f64) -> f64 {
     let p = p as f64;
-    let gamma_i = h.clamp(-1.0, 1.0).asin();
+    let gamma_i = asin_fast(h.clamp(-1.0, 1.0));
     2.0 * p * gamma_t(h, eta_prime) - 2.0 * gamma_i + p * PI
 }
 

@@ -51,7 +51,7 @@ use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::ranges;
-use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
+use crate::special::{GaussLegendre, asin_fast, exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -144,11 +144,21 @@ impl Chiang2016 {
     #[inline]
     fn m_from(&self, si: f64, ci: f64, theta_o: f64) -> [f64; LOBES] {
         let (so, co) = sin_cos_quadrant(theta_o);
-        // The cone −θ_i + shift, by the angle-sum identities.
-        std::array::from_fn(|p| {
-            let (ss, cs) = self.shift_sin_cos[p];
-            self.widths[p].eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
-        })
+        // Written out, not `array::from_fn` or a closure, which the compiler kept as a call
+        // per lobe (its arguments through memory).
+        [
+            self.m_lobe(0, si, ci, so, co),
+            self.m_lobe(1, si, ci, so, co),
+            self.m_lobe(2, si, ci, so, co),
+            self.m_lobe(3, si, ci, so, co),
+        ]
+    }
+
+    /// M_p of one lobe; the cone −θ_i + shift by the angle-sum identities.
+    #[inline(always)]
+    fn m_lobe(&self, p: usize, si: f64, ci: f64, so: f64, co: f64) -> f64 {
+        let (ss, cs) = self.shift_sin_cos[p];
+        self.widths[p].eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
     }
 
     /// What every lobe shares at offset h for light at θ_i: one sine and cosine of θ_i, the
@@ -160,9 +170,9 @@ impl Chiang2016 {
         let att = attenuation_at(inc, h, self.params.mu_a);
         Offset {
             a: [att.0[0], att.0[1], att.0[2], att.0[3] + att.0[4]],
-            gamma_i: h.asin(),
+            gamma_i: asin_fast(h),
             // γ_t = asin(h / η′) (crate::bravais::gamma_t).
-            gamma_t: (h * inc.inv_eta_prime_sq.sqrt()).clamp(-1.0, 1.0).asin(),
+            gamma_t: asin_fast((h * inc.inv_eta_prime_sq.sqrt()).clamp(-1.0, 1.0)),
             sin_cos_i: (si, ci),
         }
     }
@@ -170,10 +180,8 @@ impl Chiang2016 {
     /// N_p(φ; h) for every lobe.
     fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
         let k = 1.0 / self.trim;
-        std::array::from_fn(|p| match p {
-            3 => 0.5 / PI,
-            _ => logistic(wrap_pi(phi - at.deflection(p)), self.s) * k,
-        })
+        let n = |p: usize| logistic(wrap_pi(phi - at.deflection(p)), self.s) * k;
+        [n(0), n(1), n(2), 0.5 / PI]
     }
 
     /// M_p at θ_o for the θ_i of an offset.
@@ -226,7 +234,7 @@ impl Chiang2016 {
         let (ss, cs) = self.shift_sin_cos[p];
         // The cone −θ_i + shift, by the angle-sum identities.
         let sin_o = self.widths[p].sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[1], u[2]);
-        let theta_o = sin_o.asin();
+        let theta_o = asin_fast(sin_o);
         let phi = match p {
             3 => 2.0 * PI * u_phi - PI,
             _ => at.deflection(p) + sample_trimmed_logistic(u_phi, self.s),

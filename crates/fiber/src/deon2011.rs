@@ -15,8 +15,8 @@
 //! Reciprocity: M with a cone at −θ_i + shift is not symmetric under exchanging ω_i and ω_o
 //! (d'Eon et al. 2014 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
 
-use crate::attenuation::{Inclination, mean_total_attenuation};
-use crate::azimuthal::{AzimuthalScattering, Weighting};
+use crate::attenuation::{Inclination, attenuation_at, mean_total_attenuation_with};
+use crate::azimuthal::{AzimuthalScattering, Weighting, selection_from};
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::fresnel::fresnel_dielectric;
@@ -24,7 +24,7 @@ use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
-use crate::special::{cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
+use crate::special::{asin_fast, cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
 use crate::table::AzimuthalTable;
 use glam::{DVec3, Vec4};
 use std::f64::consts::PI;
@@ -127,7 +127,7 @@ impl DEon2011 {
     /// and [`FiberModel::pdf`], so the results are identical to theirs.
     fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (DVec3, f64) {
         if let Some(pair) = self.tabulated_pair(wi, wo) {
-            return (pair.lobes().total(), self.pair_pdf(&pair));
+            return self.pair_eval_and_pdf(&pair);
         }
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
@@ -138,37 +138,74 @@ impl DEon2011 {
         (LobeValues::separable(m, s).total(), pdf)
     }
 
+    /// The table when the tabulated fast path applies: a table and untilted scales.
+    #[inline]
+    fn fast_table(&self) -> Option<&AzimuthalTable> {
+        let table = self.table.as_deref()?;
+        (self.azimuthal.scale_tilt == 0.0).then_some(table)
+    }
+
+    /// What the tabulated path needs of θ_i alone: its sine and cosine, the prepared
+    /// inclination of A(p, h) and the table's θ_i cell, found once per call (sample shares
+    /// them between its lobe choice, its θ_o draw and its weight).
+    #[inline]
+    fn incident(&self, theta_i: f64) -> Incident {
+        let (si, ci) = sin_cos_quadrant(theta_i);
+        Incident {
+            si,
+            ci,
+            inclination: Inclination::from_sin_cos(si, ci, self.params.eta),
+            cell: AzimuthalTable::theta_i_cell(theta_i),
+        }
+    }
+
     /// The tabulated fast path's shared values for one (ω_i, ω_o), when the model has a table
-    /// and untilted scales: M_p from the sines and cosines of θ_i and θ_o, the table point
-    /// from cos(θ_o − θ_i) by the half-angle identities, and R's root h = −sin(φ/2) from
-    /// cos(φ/2) alone.
+    /// and untilted scales (see [`DEon2011::pair_at`]).
     #[inline]
     fn tabulated_pair(&self, wi: FiberAngles, wo: FiberAngles) -> Option<Pair> {
-        let table = self.table.as_deref()?;
-        if self.azimuthal.scale_tilt != 0.0 {
-            return None;
-        }
-        let (si, ci) = sin_cos_quadrant(wi.theta);
+        let table = self.fast_table()?;
+        let inc = self.incident(wi.theta);
         let (so, co) = sin_cos_quadrant(wo.theta);
-        let phi = wrap_pi(wo.phi - wi.phi);
-        let cos_2d = ci * co + si * so;
-        let point = table.point(wi.theta, table.eta_ratio_from_cos_2d(cos_2d), phi);
+        let eta_ratio = table.eta_ratio_from_cos_2d(inc.ci * co + inc.si * so);
+        Some(self.pair_at(table, &inc, so, co, eta_ratio, wrap_pi(wo.phi - wi.phi)))
+    }
+
+    /// M_p from the sines and cosines of θ_i and θ_o, the table point from η/η′ (found from
+    /// cos(θ_o − θ_i) by the half-angle identities) and φ, and R's root h = −sin(φ/2) from
+    /// cos(φ/2) alone.
+    #[inline]
+    fn pair_at(
+        &self,
+        table: &AzimuthalTable,
+        inc: &Incident,
+        so: f64,
+        co: f64,
+        eta_ratio: f64,
+        phi: f64,
+    ) -> Pair {
+        let point = table.point_in_row(inc.cell, eta_ratio, phi);
         let cos_half_phi = cos_quadrant(0.5 * phi).max(0.0);
-        Some(Pair {
-            m: self.m_from(si, ci, so, co),
+        Pair {
+            m: self.m_from(inc.si, inc.ci, so, co),
             taps: table.taps(point),
-            inclination: Inclination::from_sin_cos(si, ci, self.params.eta),
+            inclination: inc.inclination,
             cos_half_phi,
-        })
+        }
     }
 
     /// Σ_p M_p N_p with N_p weighted by lobe selection: R's selection probability
     /// f / mean(Σ_p A_p) at its root from the closed-form total (no lobe-by-lobe attenuation).
     #[inline]
     fn pair_pdf(&self, pair: &Pair) -> f64 {
+        self.pair_pdf_with(pair, pair.fresnel_r())
+    }
+
+    /// [`DEon2011::pair_pdf`] for R's Fresnel factor f already found.
+    #[inline]
+    fn pair_pdf_with(&self, pair: &Pair, f: f64) -> f64 {
         let c = pair.cos_half_phi;
         let h = (1.0 - c * c).max(0.0).sqrt();
-        let (f, total) = mean_total_attenuation(pair.inclination, h, self.params.mu_a);
+        let total = mean_total_attenuation_with(pair.inclination, f, h, self.params.mu_a);
         let sel_r = if total > 0.0 { f / total } else { 0.0 };
         let [t1, t2, t3, rest] = pair.taps;
         let m = pair.m;
@@ -177,6 +214,44 @@ impl DEon2011 {
             + m[2] * t2.w as f64
             + m[3] * t3.w as f64
             + m[3] * rest.w as f64
+    }
+
+    /// S (all lobes) and the sampling density of a pair, R's Fresnel factor found once: the
+    /// arithmetic of [`Pair::lobes`] and [`DEon2011::pair_pdf`].
+    #[inline]
+    fn pair_eval_and_pdf(&self, pair: &Pair) -> (DVec3, f64) {
+        let f = pair.fresnel_r();
+        (pair.lobes_with(f).total(), self.pair_pdf_with(pair, f))
+    }
+
+    /// The tabulated sample (d'Eon et al. 2013's procedure, as [`FiberModel::sample`] states
+    /// it): θ_i's sine, cosine, inclination and table cell found once for the lobe choice,
+    /// the θ_o draw and the weight; η′(θ_d) of the φ draw from the η/η′ the table lookup of
+    /// the weight uses. S and pdf are [`FiberModel::eval`]'s and [`FiberModel::pdf`]'s
+    /// arithmetic on the drawn ω_o, so the same bits.
+    fn sample_tabulated(
+        &self,
+        table: &AzimuthalTable,
+        wi: FiberAngles,
+        u: [f64; 4],
+    ) -> Option<FiberSample> {
+        let inc = self.incident(wi.theta);
+        let h = 2.0 * u[0] - 1.0;
+        let a = attenuation_at(inc.inclination, h, self.params.mu_a);
+        let (p, u_phi) = select_and_remap(&selection_from(&a), u[1]);
+        let (width, ss, cs) = self.prepared[p.min(3)];
+        // The cone −θ_i + shift, by the angle-sum identities.
+        let (si, ci) = (inc.si, inc.ci);
+        let theta_o =
+            asin_fast(width.sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3]));
+        let (so, co) = sin_cos_quadrant(theta_o);
+        let eta_ratio = table.eta_ratio_from_cos_2d(ci * co + si * so);
+        let eta_p = self.azimuthal.eta / eta_ratio;
+        let phi = sample_phi_at(&self.azimuthal, p, h, eta_p, u_phi);
+        let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
+        let pair = self.pair_at(table, &inc, so, co, eta_ratio, wrap_pi(wo.phi - wi.phi));
+        let (s, pdf) = self.pair_eval_and_pdf(&pair);
+        weighted_sample(wo, s, pdf, Lobe::from_index(p), 1)
     }
 
     /// M_p(θ_o) of R, TT, TRT and TRRT (the remainder shares TRRT's).
@@ -189,11 +264,21 @@ impl DEon2011 {
     /// M_p from sin θ_i, cos θ_i, sin θ_o, cos θ_o.
     #[inline]
     fn m_from(&self, si: f64, ci: f64, so: f64, co: f64) -> [f64; 4] {
-        // The cone −θ_i + shift, by the angle-sum identities.
-        std::array::from_fn(|p| {
-            let (width, ss, cs) = self.prepared[p];
-            width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
-        })
+        // Written out, not `array::from_fn` or a closure, which the compiler kept as a call
+        // per lobe (its arguments through memory).
+        [
+            self.m_lobe(0, si, ci, so, co),
+            self.m_lobe(1, si, ci, so, co),
+            self.m_lobe(2, si, ci, so, co),
+            self.m_lobe(3, si, ci, so, co),
+        ]
+    }
+
+    /// M_p of one lobe; the cone −θ_i + shift by the angle-sum identities.
+    #[inline(always)]
+    fn m_lobe(&self, p: usize, si: f64, ci: f64, so: f64, co: f64) -> f64 {
+        let (width, ss, cs) = self.prepared[p];
+        width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
     }
 
     /// The longitudinal lobe of mode p for light at θ_i.
@@ -216,14 +301,16 @@ impl FiberModel for DEon2011 {
     }
 
     fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
+        if let Some(table) = self.fast_table() {
+            return self.sample_tabulated(table, wi, u);
+        }
         let h = 2.0 * u[0] - 1.0;
         let (p, u_phi) = select_and_remap(&self.azimuthal.selection(wi.theta, h), u[1]);
         let (si, ci) = sin_cos_quadrant(wi.theta);
         let (width, ss, cs) = self.prepared[p.min(3)];
         // The cone −θ_i + shift, by the angle-sum identities.
-        let theta_o = width
-            .sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3])
-            .asin();
+        let theta_o =
+            asin_fast(width.sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3]));
         let theta_d = 0.5 * (theta_o - wi.theta);
         let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
@@ -237,6 +324,15 @@ impl FiberModel for DEon2011 {
             None => self.density(wi, wo, Weighting::Selection).total().x,
         }
     }
+}
+
+/// What the tabulated path needs of θ_i alone ([`DEon2011::incident`]).
+struct Incident {
+    si: f64,
+    ci: f64,
+    inclination: Inclination,
+    /// The table's θ_i cell: lower node and fraction.
+    cell: (usize, f32),
 }
 
 /// What eval and pdf share for one (ω_i, ω_o) on the tabulated path.
@@ -253,8 +349,22 @@ impl Pair {
     /// S per lobe: N_R = ¼ cos(φ/2) A(0, h) (d'Eon et al. 2014 §2.3), the rest from the table.
     #[inline]
     fn lobes(&self) -> LobeValues {
+        self.lobes_with(self.fresnel_r())
+    }
+
+    /// A(0, h) = f at R's root, whose 3D incidence cosine is cos θ_i cos γ_i = cos θ_i cos(φ/2).
+    #[inline]
+    fn fresnel_r(&self) -> f64 {
+        fresnel_dielectric(
+            self.inclination.cos_theta * self.cos_half_phi,
+            self.inclination.eta,
+        )
+    }
+
+    /// [`Pair::lobes`] for R's Fresnel factor f already found.
+    #[inline]
+    fn lobes_with(&self, f: f64) -> LobeValues {
         let c = self.cos_half_phi;
-        let f = fresnel_dielectric(self.inclination.cos_theta * c, self.inclination.eta);
         let [t1, t2, t3, rest] = self.taps;
         let n_r = DVec3::splat(0.25 * c * f);
         LobeValues::separable(
@@ -273,12 +383,22 @@ impl Pair {
 /// φ for lobe p entering at h: Φ(p, h) plus a wrapped-Gaussian offset (d'Eon 2013); R has
 /// no offset and the p ≥ 4 remainder is uniform.
 pub(crate) fn sample_phi(az: &AzimuthalScattering, p: usize, h: f64, theta_d: f64, u: f64) -> f64 {
+    let eta_p = if matches!(p, 1..=3) {
+        eta_prime(az.eta, theta_d)
+    } else {
+        az.eta
+    };
+    sample_phi_at(az, p, h, eta_p, u)
+}
+
+/// [`sample_phi`] for η′(θ_d) already found (R and the remainder do not use it).
+fn sample_phi_at(az: &AzimuthalScattering, p: usize, h: f64, eta_p: f64, u: f64) -> f64 {
     match p {
         0 => azimuthal_deflection(0, h, az.eta),
         4 => 2.0 * PI * u - PI,
         _ => {
             let offset = az.v_n[p].sqrt() * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16));
-            azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + offset
+            azimuthal_deflection(p as u32, h, eta_p) + offset
         }
     }
 }

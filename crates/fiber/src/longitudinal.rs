@@ -8,7 +8,7 @@
 //! cosine is part of the measure, so M carries no such factor.
 
 use crate::special::{
-    I0_AS_SPLIT, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
+    I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
 };
 use std::f64::consts::PI;
 
@@ -41,7 +41,7 @@ impl LongitudinalLobe {
     /// cosine w of the angle to the cone's central direction, then an azimuth ψ about it.
     pub fn sample(&self, u1: f64, u2: f64) -> f64 {
         let (sc, cc) = self.theta_cone.sin_cos();
-        sample_sin_o(self.v, (-2.0 / self.v).exp(), sc, cc, u1, u2).asin()
+        asin_fast(sample_sin_o(self.v, (-2.0 / self.v).exp(), sc, cc, u1, u2))
     }
 }
 
@@ -94,8 +94,10 @@ impl LongitudinalWidth {
     /// eq. 9.8.1–9.8.2 and the exponential by [`exp_fast`], so no logarithm is taken and no long
     /// series summed. Within 1e-6
     /// relative of [`LongitudinalWidth::eval_log_space`], the reference twin
-    /// (`fast_m_matches_the_log_space_reference`).
-    #[inline]
+    /// (`fast_m_matches_the_log_space_reference`). Always inlined: the models call it once
+    /// per lobe between other arithmetic, and as a call it made the caller spill every live
+    /// SSE register around each of the four.
+    #[inline(always)]
     pub fn eval(&self, sin_cone: f64, cos_cone: f64, sin_o: f64, cos_o: f64) -> f64 {
         let x = (cos_cone * cos_o).abs() * self.inv_v;
         let e = self.log_norm + sin_cone * sin_o * self.inv_v;
