@@ -1,10 +1,11 @@
-//! The SRBF raster's coverage (ss = 3, which draws a fiber at least a subsample wide) against
-//! the tubes' true coverage (8 × 8 camera rays a pixel) at 360 × 240, default camera: the true
-//! coverage of the pixels the raster calls full, over the hair and its bottom fifth, and the
-//! environment seen through them; then the covered area of the raster against the true one,
-//! summed over every pixel and over the bottom fifth of the rows the true hair spans. `cargo run --release --example coverage_probe [GROOM]`;
-//! `coverage_probe mask FILE.exr [GROOM]` writes min(raster, true) per pixel, a `--coverage`
-//! mask for `cuticle compare` against path renders made before they wrote coverage.exr.
+//! The SRBF raster's coverage (ss = 3, or `PROBE_SS` in the environment) against the tubes'
+//! true coverage (8 × 8 camera rays a pixel) at 360 × 240, default camera: the true coverage
+//! of the pixels the raster calls full, over the hair and its bottom fifth, and the environment
+//! seen through them; then the raster's covered area against the true one, summed over every
+//! pixel and over the bottom fifth of the rows the true hair spans.
+//! `cargo run --release --example coverage_probe [GROOM]`; `coverage_probe mask FILE.exr
+//! [GROOM]` writes min(raster, true) per pixel, a `--coverage` mask for `cuticle compare`
+//! against path renders made before they wrote coverage.exr.
 use cuticle_render::frame::raster::rasterize;
 use cuticle_render::{Scene, SceneSpec};
 use cuticle_trace::Accel;
@@ -39,7 +40,18 @@ impl Probe {
         let scene = Scene::load_without_lights(spec).unwrap();
         let accel = Accel::build(&scene.groom);
         let view = scene.camera.view(SIZE.0, SIZE.1);
-        let cov = rasterize(&scene.groom, &view, SIZE.0, SIZE.1, 3);
+        let cov = rasterize(
+            &scene.groom,
+            &view,
+            SIZE.0,
+            SIZE.1,
+            std::env::var("PROBE_SS")
+                .map(|s| {
+                    s.parse()
+                        .expect("PROBE_SS: a count of subsamples per pixel side")
+                })
+                .unwrap_or(3),
+        );
         Probe {
             scene,
             accel,
