@@ -327,6 +327,9 @@ mod tests {
     const LENGTH: f32 = 16.0;
     const POINTS: usize = 121;
 
+    /// A strand's true width in subsamples at its fraction s of the way along.
+    type Width = fn(f32) -> f32;
+
     fn view() -> View {
         View {
             eye: DVec3::ZERO,
@@ -397,7 +400,7 @@ mod tests {
     #[test]
     fn thin_strands_cover_their_true_width_on_average() {
         for angle in [0.05f32, 1.4] {
-            let widths: [(&str, fn(f32) -> f32); 3] = [
+            let widths: [(&str, Width); 3] = [
                 ("0.3 wide", |_| 0.3),
                 ("tapered 1.5 to 0.1", |s| 1.5 - 1.4 * s),
                 ("2.5 wide", |_| 2.5),
