@@ -1,9 +1,11 @@
-//! The SRBF raster's coverage (ss = 3, which draws a fiber at least a subsample wide) against
-//! the tubes' true coverage (8 × 8 camera rays a pixel) at 360 × 240, default camera: the true
-//! coverage of the pixels the raster calls full, over the hair and its bottom fifth, and the
-//! environment seen through them. `cargo run --release --example coverage_probe [GROOM]`;
-//! `coverage_probe mask FILE.exr [GROOM]` writes min(raster, true) per pixel, a `--coverage`
-//! mask for `cuticle compare` against path renders made before they wrote coverage.exr.
+//! The SRBF raster's coverage (ss = 3, or `PROBE_SS` in the environment) against the tubes'
+//! true coverage (8 × 8 camera rays a pixel) at 360 × 240, default camera: the true coverage
+//! of the pixels the raster calls full, over the hair and its bottom fifth, and the environment
+//! seen through them; then the raster's covered area against the true one, summed over every
+//! pixel and over the bottom fifth of the rows the true hair spans.
+//! `cargo run --release --example coverage_probe [GROOM]`; `coverage_probe mask FILE.exr
+//! [GROOM]` writes min(raster, true) per pixel, a `--coverage` mask for `cuticle compare`
+//! against path renders made before they wrote coverage.exr.
 use cuticle_render::frame::raster::rasterize;
 use cuticle_render::{Scene, SceneSpec};
 use cuticle_trace::Accel;
@@ -38,7 +40,18 @@ impl Probe {
         let scene = Scene::load_without_lights(spec).unwrap();
         let accel = Accel::build(&scene.groom);
         let view = scene.camera.view(SIZE.0, SIZE.1);
-        let cov = rasterize(&scene.groom, &view, SIZE.0, SIZE.1, 3);
+        let cov = rasterize(
+            &scene.groom,
+            &view,
+            SIZE.0,
+            SIZE.1,
+            std::env::var("PROBE_SS")
+                .map(|s| {
+                    s.parse()
+                        .expect("PROBE_SS: a count of subsamples per pixel side")
+                })
+                .unwrap_or(3),
+        );
         Probe {
             scene,
             accel,
@@ -110,6 +123,30 @@ fn main() {
         "background seen through hair pixels (mean): all {:.4?} bottom fifth {:.4?}",
         b_all / hair.len() as f64,
         b_tip / n_tip as f64
+    );
+    let every: Vec<f64> = (0..SIZE.0 * SIZE.1)
+        .into_par_iter()
+        .map(|k| probe.true_pixel(k).coverage)
+        .collect();
+    let rows: Vec<usize> = (0..every.len())
+        .filter(|&k| every[k] > 0.0)
+        .map(|k| k / w)
+        .collect();
+    let (top, bottom) = (*rows.iter().min().unwrap(), *rows.iter().max().unwrap());
+    let cut = top as f64 + 0.8 * (bottom - top) as f64;
+    let (mut raster, mut truth, mut raster_tip, mut truth_tip) = (0.0, 0.0, 0.0, 0.0);
+    for (k, &t) in every.iter().enumerate() {
+        let r = probe.cov.pixel_fraction(k % w, k / w);
+        (raster, truth) = (raster + r, truth + t);
+        if (k / w) as f64 > cut {
+            (raster_tip, truth_tip) = (raster_tip + r, truth_tip + t);
+        }
+    }
+    println!(
+        "covered area, every pixel (raster / true): all {raster:.0} / {truth:.0} pixels ({:.3}); \
+         bottom fifth of the true hair's rows {raster_tip:.0} / {truth_tip:.0} ({:.3})",
+        raster / truth,
+        raster_tip / truth_tip
     );
 }
 

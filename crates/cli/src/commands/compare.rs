@@ -8,9 +8,10 @@
 //! Hair pixels are those whose coverage is at least `--min-coverage` (default 1: fully covered,
 //! so no background mixes in) in every coverage given: `coverage.exr` of A's folder, of B's, and
 //! `--coverage FILE`, whichever exist (at least one). Both sides' masks count because they differ
-//! where hair is thin: the SRBF and brute renders draw a fiber at least a subsample wide, the
-//! path tracer's coverage (the fraction of its camera rays that meet a tube) is the tubes' true
-//! one, so a pixel one calls full may show the background in the other. With `--minus A0/ B0/`,
+//! where hair is thin: the SRBF and brute renders cover a fiber thinner than a subsample
+//! stochastically (its true width on average, frame/raster.rs), the path tracer's coverage (the
+//! fraction of its camera rays that meet a tube) by its own rays, so a pixel one calls full may
+//! show the background in the other. With `--minus A0/ B0/`,
 //! A − A0 is compared against B − B0: multiple scattering as a full render minus a direct one.
 
 use crate::output::OutDir;

@@ -1,5 +1,6 @@
-// frame/raster.rs's drawing on the GPU: strands as capsules of their projected width into the
-// supersampled visibility buffer, each subsample keeping the nearest segment (the lowest
+// frame/raster.rs's drawing on the GPU: strands as capsules of their projected width (at least
+// a subsample, covering each subsample with probability true width / drawn width by the same
+// hash as the CPU's) into the supersampled visibility buffer, each subsample keeping the nearest segment (the lowest
 // segment among equal depths, as the CPU's strictly-nearer test in segment order keeps), and
 // the visible points listed in ascending order. Every entry point below is one dispatch of
 // draw/mod.rs, in its order; the prefix sums between them are scan.wgsl's.
@@ -46,7 +47,8 @@ const EMPTY: u32 = 0xffffffffu;
 @group(0) @binding(1) var<storage, read> groom: array<vec4<f32>>;
 // The first point of every segment, in strand order (the CPU's capsule order).
 @group(0) @binding(2) var<storage, read> segments: array<u32>;
-// Per point: x, y in subsamples, depth (negative: behind the near plane) and half width.
+// Per point: x, y in subsamples, depth (negative: behind the near plane) and true half width
+// (the capsule is drawn at least half a subsample wide).
 @group(0) @binding(3) var<storage, read_write> projected: array<vec4<f32>>;
 // Per segment its count of major lines, then (scanned) the first line of each; one more entry
 // at the end for the total.
@@ -68,8 +70,8 @@ const EMPTY: u32 = 0xffffffffu;
 // The indirect dispatch of cover: workgroups along x, y, z.
 @group(0) @binding(12) var<storage, read_write> cover_groups: array<u32>;
 
-// Pass 1: every point projected (camera.rs's View::project), in subsamples, with its half
-// width (raster.rs's `capsules`: at least half a subsample).
+// Pass 1: every point projected (camera.rs's View::project), in subsamples, with its true half
+// width (raster.rs's `capsules`).
 @compute @workgroup_size(64)
 fn project(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     for (var i = id.x; i < params.points; i += groups.x * WORKGROUP) {
@@ -83,16 +85,42 @@ fn project(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups
         let s = params.focal / z;
         let x = params.half_width + dot(d, params.right) * s;
         let y = params.half_height - dot(d, params.up) * s;
-        let half = max(0.5 * p.w * (params.focal / max(z, params.near)) * params.ss, 0.5);
+        let half = 0.5 * p.w * (params.focal / max(z, params.near)) * params.ss;
         projected[i] = vec4<f32>(x * params.ss, y * params.ss, z, half);
     }
 }
 
-// A segment ready to draw (raster.rs's Capsule and the bounds of its Tile::draw): its ends,
-// its reach r, whether y is its major axis, and its major and minor ranges of subsamples.
+// raster.rs's pcg: one step of the 32-bit PCG LCG, then its RXS-M-XS output permutation
+// (O'Neill 2014); u32 arithmetic wraps in WGSL as wrapping_* does in Rust.
+fn pcg(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// raster.rs's coverage_hash.
+fn coverage_hash(strand: u32, subsample: u32) -> u32 {
+    return pcg(strand ^ pcg(subsample));
+}
+
+// raster.rs's keeps: whether a capsule drawn `half` wide, whose strand is truly `true_half`
+// wide, covers the subsample (with probability true_half / half where that is below 1).
+fn keeps(strand: u32, subsample: u32, half: f32, true_half: f32) -> bool {
+    if (true_half >= half) {
+        return true;
+    }
+    let u = f32(coverage_hash(strand, subsample) >> 8u) * (1.0 / 16777216.0);
+    return u * half < true_half;
+}
+
+// A segment ready to draw (raster.rs's Capsule and the bounds of its Tile::draw): its ends
+// (w: the true half width), its drawn half widths, its reach r, whether y is its major axis,
+// and its major and minor ranges of subsamples.
 struct Capsule {
     a: vec4<f32>,
     b: vec4<f32>,
+    half_a: f32,
+    half_b: f32,
     r: f32,
     steep: bool,
     u_lo: u32,
@@ -108,7 +136,9 @@ fn capsule(first: u32) -> Capsule {
     if (c.a.z < 0.0 || c.b.z < 0.0) {
         return c;
     }
-    c.r = max(c.a.w, c.b.w);
+    c.half_a = max(c.a.w, 0.5);
+    c.half_b = max(c.b.w, 0.5);
+    c.r = max(c.half_a, c.half_b);
     let w = f32(params.sub_width);
     let h = f32(params.sub_height);
     let x_lo = u32(clamp(floor(min(c.a.x, c.b.x) - c.r), 0.0, w));
@@ -213,8 +243,9 @@ fn segment_of_line(l: u32) -> u32 {
 }
 
 // Pass 4, twice (params.mode 0 then 1): one invocation per major line of a segment covers the
-// subsample centres within the capsule on that line (raster.rs's Tile::draw), keeping the
-// nearest depth, then, among the subsamples at that depth, the lowest segment. Both passes are
+// subsample centres within the capsule on that line that `keeps` keeps (raster.rs's
+// Tile::draw), keeping the nearest depth, then, among the subsamples at that depth, the lowest
+// segment. Both passes are
 // this one entry point, so that both compute each depth alike. Work per invocation is one line,
 // at most the image's extent along the minor axis.
 @compute @workgroup_size(64)
@@ -240,13 +271,16 @@ fn cover(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) 
             let t = along(c, x, y);
             let ex = f32(x) + 0.5 - c.a.x - t * dx;
             let ey = f32(y) + 0.5 - c.a.y - t * dy;
-            let half = c.a.w + t * (c.b.w - c.a.w);
+            let half = c.half_a + t * (c.half_b - c.half_a);
             if (ex * ex + ey * ey > half * half) {
+                continue;
+            }
+            let k = y * params.sub_width + x;
+            if (!keeps(strand_of_point[first], k, half, c.a.w + t * (c.b.w - c.a.w))) {
                 continue;
             }
             let z = c.a.z + t * (c.b.z - c.a.z);
             let key = ~bitcast<u32>(z);
-            let k = y * params.sub_width + x;
             if (params.mode == 0u) {
                 atomicMax(&depth[k], key);
             } else if (atomicLoad(&depth[k]) == key) {

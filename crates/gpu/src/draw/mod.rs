@@ -5,7 +5,9 @@
 //! 3. a prefix sum of those counts ([`scan`]) and `size_cover`: the work list of step 4, one
 //!    invocation per line of a segment (so that no invocation draws more than one line across
 //!    the image, however large a segment is on screen);
-//! 4. `cover`, twice: every subsample centre within a segment's capsule keeps the nearest
+//! 4. `cover`, twice: every subsample centre within a segment's capsule (at least a subsample
+//!    wide; where the strand is thinner, a centre only with probability true width / drawn
+//!    width, by raster.rs's `coverage_hash` of the strand and the subsample) keeps the nearest
 //!    depth, then the lowest segment at that depth (the CPU's strictly-nearer test in segment
 //!    order keeps the same one; atomics have 32 bits, too few for both in one pass);
 //! 5. `settle`: each subsample's segment and position t along it into the buffer the resolve
@@ -221,7 +223,7 @@ impl Drawing {
             &[0, 1, 3],
             &[0, 2, 3, 4],
             &[0, 4, 12],
-            &[0, 2, 3, 4, 5, 6],
+            &[0, 2, 3, 4, 5, 6, 10],
             &[0, 3, 6, 7, 8],
             &[0, 1, 8, 9, 10, 11],
         ];
