@@ -67,8 +67,10 @@ fn the_estimate_bounds_the_peak_within_a_small_factor() {
         },
     ];
     for spoil in cases {
-        let mut spec = SceneSpec::default();
-        spec.multiple = false;
+        let mut spec = SceneSpec {
+            multiple: false,
+            ..SceneSpec::default()
+        };
         spoil(&mut spec);
         let peak = peak_of(&spec);
         let need = spec.memory_need(None, threads).total() as usize;

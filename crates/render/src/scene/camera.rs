@@ -201,7 +201,8 @@ mod tests {
     fn degenerate_cameras_are_refused() {
         let good = Camera::framing(Vec3::splat(-10.0), Vec3::splat(10.0), true);
         assert!(good.validate().is_ok());
-        let cases: [(&str, fn(&mut Camera)); 9] = [
+        type Spoil = (&'static str, fn(&mut Camera));
+        let cases: [Spoil; 9] = [
             ("camera.fov_deg", |c| c.fov_deg = f64::NAN),
             ("camera.fov_deg", |c| c.fov_deg = f64::INFINITY),
             ("camera.fov_deg", |c| c.fov_deg = 0.0),
