@@ -208,9 +208,8 @@ impl Tube {
     /// k = taper · (d·axis). Its discriminant b² − ac is taken in the equal form
     /// |k q⊥ − R₀ d⊥|² − |q⊥ × d⊥|² (Lagrange's identity), whose terms are of the order of the
     /// radius squared near the tube: b² and ac are each of the order of |q|², and far from a
-    /// thin tube their f32 difference lost the radius (a tube of radius 0.01 seen from 12
-    /// units away was hit about 6 % wider than it is; the test
-    /// `a_thin_tube_far_away_is_hit_across_its_width` checks this).
+    /// thin tube their f32 difference lost the radius, widening it
+    /// (`a_thin_tube_far_away_is_hit_across_its_width`).
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> f32 {
         let q = ray.origin - self.a;

@@ -102,6 +102,15 @@ pub struct BackPaths {
     pub forward_crossings: f64,
 }
 
+impl BackPaths {
+    /// What these paths add up of a quantity that each forward crossing adds `forward` to and
+    /// each back-scattering event `back`: n̄_k forward + k back (the shift from α_f, α_b, the
+    /// variance from β_f², β_b²).
+    pub fn summed(&self, forward: f64, back: f64) -> f64 {
+        self.forward_crossings * forward + self.events * back
+    }
+}
+
 /// A₁ and A₃ of a Poisson medium, with their mean forward crossings (module doc).
 pub fn back_paths(af: f64, ab: f64) -> [BackPaths; 2] {
     let open = 1.0 - af;
@@ -124,17 +133,16 @@ pub fn averages_from_moments(moments: [f64; 6]) -> [f64; 5] {
     let [af, ab, alpha_f, alpha_b, beta_f2, beta_b2] = moments;
     let (af, ab) = (af.clamp(0.0, MAX_FORWARD), ab.max(0.0));
     let (beta_f2, beta_b2) = (beta_f2.max(0.0), beta_b2.max(0.0));
-    let paths = back_paths(af, ab);
-    let shift = |k: &BackPaths| k.events * alpha_b + k.forward_crossings * alpha_f;
-    let variance = |k: &BackPaths| k.events * beta_b2 + k.forward_crossings * beta_f2;
-    let big_ab: f64 = paths.iter().map(|k| k.weight).sum();
+    let [one, three] = back_paths(af, ab);
+    let big_ab = one.weight + three.weight;
     let (shift, variance) = if big_ab > 1e-300 {
-        let mean = |f: &dyn Fn(&BackPaths) -> f64| {
-            paths.iter().map(|k| k.weight * f(k)).sum::<f64>() / big_ab
+        let mean = |forward: f64, back: f64| {
+            (one.weight * one.summed(forward, back) + three.weight * three.summed(forward, back))
+                / big_ab
         };
-        (mean(&shift), mean(&variance))
+        (mean(alpha_f, alpha_b), mean(beta_f2, beta_b2))
     } else {
-        (shift(&paths[0]), variance(&paths[0]))
+        (one.summed(alpha_f, alpha_b), one.summed(beta_f2, beta_b2))
     };
     [af, beta_f2, big_ab, shift, variance.sqrt().max(1e-4)]
 }
