@@ -1,6 +1,6 @@
 //! The Fresnel factor F(η, θ_d, h) of the azimuthal functions (Xu et al. 2011 eq. 10): Marschner
 //! 2003's oblique factor with Bravais' indices η′(η, θ_d) and η″(η, θ_d) at γ_i = asin h, the
-//! same factor the exact model uses, and Schlick's approximation for the R mode (eq. 13).
+//! same factor the exact model uses.
 
 use cuticle_fiber::bravais::{eta_double_prime, eta_prime};
 use cuticle_fiber::fresnel::fresnel_oblique;
@@ -13,9 +13,4 @@ pub fn oblique(eta: f64, theta_d: f64, h: f64) -> f64 {
         eta_double_prime(eta, theta_d),
         gamma,
     )
-}
-
-/// F₀ = (1 − η)²/(1 + η)², the reflectance at normal incidence (Xu et al. 2011 §4.2.1).
-pub fn schlick_f0(eta: f64) -> f64 {
-    ((1.0 - eta) / (1.0 + eta)).powi(2)
 }

@@ -113,6 +113,7 @@ fn sweep(lambda: f64) -> Sweep {
 }
 
 fn check(s: &Sweep, bounds: [f64; 3], total: (f64, f64), what: &str) {
+    eprintln!("{what}: worst per mode {:?}, total {:?}", s.worst, s.total);
     for (p, name) in ["R", "TT", "TRT"].iter().enumerate() {
         assert!(
             s.worst[p] <= bounds[p],

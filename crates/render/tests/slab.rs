@@ -298,6 +298,7 @@ impl<'a> Terms<'a> {
         };
         let terms = |d_b: f64| {
             Dual {
+                tables: &r.tables,
                 half: &r.half,
                 spread: &r.spread,
                 shadows: ShadowOptions::default(),

@@ -302,6 +302,7 @@ impl Renderer {
                 tables: &self.tables,
                 lobes,
                 dual: back.as_deref().map(|back| Dual {
+                    tables: &self.tables,
                     half: &self.half,
                     spread: &self.spread,
                     shadows: scene.spec.shadows,

@@ -38,6 +38,7 @@ use crate::srbf::quadrature::Window;
 use crate::srbf::single_scattering::{LocalLight, ShadingFiber};
 use crate::tables::absorption_axis;
 use crate::tables::back_scattering::{Averages, BackScatteringTables};
+use crate::tables::cg_integrals::Tables;
 use crate::tables::half_circle::HalfCircle;
 use crate::tables::lobe_table::AzimuthalLobes;
 use crate::tables::spread::SpreadNormalisation;
@@ -57,6 +58,8 @@ pub const BACK_SCALE: f64 = 2.0;
 /// Everything multiple scattering reads besides the point and its lights.
 #[derive(Clone, Copy, Debug)]
 pub struct Dual<'a> {
+    /// Xu et al. 2011 §5's tables (N_R's Fresnel quintic).
+    pub tables: &'a Tables,
     pub half: &'a HalfCircle,
     /// Z(θ_j, σ) of each spread (the narrow limit cos θ_j overstates wide lights at the axis).
     pub spread: &'a SpreadNormalisation,
@@ -177,7 +180,7 @@ impl Dual<'_> {
                 window.integrate_incident(self.m, &outgoing, |sample| {
                     let theta_d = sample.theta_d;
                     match t {
-                        0 => DVec3::splat(r_half(eta, sample.cos2_d.sqrt(), &w)),
+                        0 => DVec3::splat(r_half(self.tables, eta, theta_d, &w)),
                         1 => {
                             let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
@@ -235,8 +238,8 @@ impl Dual<'_> {
 }
 
 /// 𝒩^G_R = (1/π) Σ_k C_k W_k(δ) (eqs. 13, 28).
-fn r_half(eta: f64, cos_theta_d: f64, w: &[f64; 7]) -> f64 {
-    let c = r_coefficients(eta, cos_theta_d);
+fn r_half(tables: &Tables, eta: f64, theta_d: f64, w: &[f64; 7]) -> f64 {
+    let c = r_coefficients(tables, eta, theta_d);
     (1..7).map(|k| c[k] * w[k]).sum::<f64>() / PI
 }
 

@@ -105,7 +105,7 @@ pub fn modes<L: AzimuthalLobes>(
                 0 => DVec3::splat(r_convolved(
                     tables,
                     fiber.params.eta,
-                    cos2_d.sqrt(),
+                    theta_d,
                     lambda,
                     delta,
                 )),

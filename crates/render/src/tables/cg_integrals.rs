@@ -4,11 +4,14 @@
 //!   with ln Z beside it; λ′ ∈ [0.001, 10] logarithmically (128 nodes) × δ ∈ [0, π] (65 nodes,
 //!   the paper's 64 over the half circle doubled by the symmetry 𝒞_k(λ′, −δ) = 𝒞_k(λ′, δ));
 //! - ℋ_k^TT(η, θ_d) = ∫_{−1}^{1} (1 − F)² h^k dh and ℋ_k^TRT(η, θ_d) = ∫_{−1}^{1} (1 − F)² F h^k dh,
-//!   k = 0, 2, 4 (eqs. 19, 23), η ∈ [1, 10] logarithmically (128 nodes) × θ_d ∈ [0, 1.5] (64).
+//!   k = 0, 2, 4 (eqs. 19, 23), η ∈ [1, 10] logarithmically (128 nodes) × θ_d ∈ [0, 1.5] (64);
+//! - N_R's Fresnel factor as a quintic in cos γ ([`r_fresnel`]; Xu et al. 2011 eq. 13 has
+//!   Schlick's), over the same (η, θ_d) grid.
 
 use crate::fresnel::oblique;
 use crate::srbf::circular_gaussian as cg;
 use crate::tables::grid::Grid2;
+use crate::tables::r_fresnel::{self, TERMS};
 use cuticle_fiber::special::GaussLegendre;
 use std::f64::consts::PI;
 
@@ -28,6 +31,8 @@ pub struct Tables {
     h_tt: Grid2<3>,
     /// [ℋ_0, ℋ_2, ℋ_4] of TRT over (ln η, θ_d).
     h_trt: Grid2<3>,
+    /// [a₀ … a₅] of N_R's Fresnel quintic over (ln η, θ_d).
+    r_fresnel: Grid2<TERMS>,
 }
 
 impl Tables {
@@ -44,10 +49,14 @@ impl Tables {
         let h_trt = Grid2::build((128, e0, e1), (64, 0.0, THETA_D_MAX), |ln_eta, td| {
             fresnel_moments(ln_eta.exp(), td, |f| (1.0 - f) * (1.0 - f) * f)
         });
+        let r_fresnel = Grid2::build((128, e0, e1), (64, 0.0, THETA_D_MAX), |ln_eta, td| {
+            r_fresnel::coefficients(ln_eta.exp(), td)
+        });
         Self {
             cosine,
             h_tt,
             h_trt,
+            r_fresnel,
         }
     }
 
@@ -77,16 +86,38 @@ impl Tables {
             .lookup(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln(), theta_d.abs())
     }
 
-    /// The grids as stored: [𝒞_0/Z … 𝒞_6/Z, ln Z] over (ln λ′, δ); ℋ^TT and ℋ^TRT over
-    /// (ln η, θ_d). For a back end that uploads them.
-    pub fn grids(&self) -> (&Grid2<8>, &Grid2<3>, &Grid2<3>) {
-        (&self.cosine, &self.h_tt, &self.h_trt)
+    /// [a₀ … a₅] of N_R's Fresnel factor F ≈ Σ a_n cosⁿγ at (η, θ_d) ([`r_fresnel`]).
+    pub fn r_fresnel(&self, eta: f64, theta_d: f64) -> [f64; TERMS] {
+        self.r_fresnel
+            .lookup(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln(), theta_d.abs())
+    }
+
+    /// The grids as stored, for a back end that uploads them.
+    pub fn grids(&self) -> StoredGrids<'_> {
+        StoredGrids {
+            cosine: &self.cosine,
+            h_tt: &self.h_tt,
+            h_trt: &self.h_trt,
+            r_fresnel: &self.r_fresnel,
+        }
     }
 
     /// Number of table entries (for reports).
     pub fn entries(&self) -> usize {
-        self.cosine.len() + self.h_tt.len() + self.h_trt.len()
+        self.cosine.len() + self.h_tt.len() + self.h_trt.len() + self.r_fresnel.len()
     }
+}
+
+/// [`Tables`]' grids as stored.
+pub struct StoredGrids<'a> {
+    /// [𝒞_0/Z … 𝒞_6/Z, ln Z] over (ln λ′, δ).
+    pub cosine: &'a Grid2<8>,
+    /// ℋ^TT over (ln η, θ_d).
+    pub h_tt: &'a Grid2<3>,
+    /// ℋ^TRT over (ln η, θ_d).
+    pub h_trt: &'a Grid2<3>,
+    /// N_R's Fresnel quintic over (ln η, θ_d).
+    pub r_fresnel: &'a Grid2<TERMS>,
 }
 
 /// [𝒞_0/Z … 𝒞_6/Z, ln Z] by composite Gauss–Legendre over the Gaussian's support, split at the
