@@ -5,7 +5,7 @@
 //!
 //! - Built once with [`GpuRenderer::new`](crate::GpuRenderer::new), independent of every hair
 //!   parameter ([`StaticTables`]): 𝒞_k/Z with ln Z, ℋ^TRT (for eccentric fibers, whose TRT is
-//!   fitted at each sample), the half-circle integrals W_k and P, the spread normalisation Z,
+//!   fitted at each sample), N_R's Fresnel quintic, the half-circle integrals W_k and P, the spread normalisation Z,
 //!   and the circular-Gaussian width correction.
 //! - Rebuilt by the CPU renderer when η, the caustics or (for dual scattering) any parameter but
 //!   absorption changes, and uploaded then: the lobe table (TT, TRT) and the back-scattering
@@ -46,8 +46,9 @@ pub mod slot {
     pub const LOBE_TT: usize = 6;
     pub const LOBE_TRT: usize = 7;
     pub const BACK: usize = 8;
+    pub const R_FRESNEL: usize = 9;
     /// Slots in all.
-    pub const COUNT: usize = 9;
+    pub const COUNT: usize = 10;
 }
 
 /// Grids flattened into one f32 buffer.
@@ -94,9 +95,10 @@ impl Packed {
 /// The parameter-independent tables.
 pub fn static_grids(tables: &Tables, half: &HalfCircle, spread: &SpreadNormalisation) -> Packed {
     let mut packed = Packed::default();
-    let (cosine, _h_tt, h_trt) = tables.grids();
-    packed.push(slot::COSINE, cosine);
-    packed.push(slot::H_TRT, h_trt);
+    let grids = tables.grids();
+    packed.push(slot::COSINE, grids.cosine);
+    packed.push(slot::H_TRT, grids.h_trt);
+    packed.push(slot::R_FRESNEL, grids.r_fresnel);
     let (cosines, share) = half.grids();
     packed.push(slot::HALF_COSINES, cosines);
     packed.push(slot::HALF_SHARE, share);

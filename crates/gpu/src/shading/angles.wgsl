@@ -142,8 +142,3 @@ fn oblique(eta: f32, theta_d: f32, h: f32) -> f32 {
         + polarised_reflectance(eta_double_prime(eta, theta_d), gamma, false));
 }
 
-// F₀ = (1 − η)²/(1 + η)² (Xu et al. 2011 §4.2.1).
-fn schlick_f0(eta: f32) -> f32 {
-    let r = (1.0 - eta) / (1.0 + eta);
-    return r * r;
-}

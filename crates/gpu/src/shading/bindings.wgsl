@@ -27,6 +27,7 @@ const GRID_WIDTH: u32 = 5u;
 const GRID_LOBE_TT: u32 = 6u;
 const GRID_LOBE_TRT: u32 = 7u;
 const GRID_BACK: u32 = 8u;
+const GRID_R_FRESNEL: u32 = 9u;
 
 // shading/mod.rs's ShadeParams.
 struct Params {
@@ -49,7 +50,7 @@ struct Params {
     caustic_limit: f32,
     // Bit t set: single-scattering lobe t (R, TT, TRT) shades.
     lobes: u32,
-    grids: array<Grid, 9>,
+    grids: array<Grid, 10>,
 }
 
 // The lights one dispatch of the pass adds: first, first + 1, …, first + count − 1.

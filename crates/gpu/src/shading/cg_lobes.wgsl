@@ -1,24 +1,24 @@
-// srbf/cg_lobes.rs and srbf/taylor.rs in f32: N_R as Schlick's polynomial against 𝒞_k, and the
+// srbf/cg_lobes.rs and srbf/taylor.rs in f32: N_R as the Fresnel quintic's polynomial against 𝒞_k, and the
 // TRT fit at one (η, θ_d) with its caustic moments, which eccentric fibers need at every sample
 // (their η̄* varies). KEPT_PANELS, KEPT_POINTS and the Gauss–Legendre KEPT_NODES/KEPT_WEIGHTS
 // are cg_lobes.rs's, written by shading/mod.rs.
 
-// C_0 … C_6 of N_R's polynomial in |cos(φ/2)| (Xu et al. 2011 eq. 13).
-fn r_coefficients(eta: f32, cos_theta_d: f32) -> array<f32, 7> {
-    var binomial = array<f32, 6>(1.0, 5.0, 10.0, 10.0, 5.0, 1.0);
-    let f0 = schlick_f0(eta);
-    var out = array<f32, 7>(0.0, 0.25, 0.0, 0.0, 0.0, 0.0, 0.0);
-    var power = 1.0;
-    for (var n = 1u; n < 6u; n++) {
-        power *= -cos_theta_d;
-        out[n + 1u] = 0.25 * (1.0 - f0) * binomial[n] * power;
+// C_0 … C_6 of N_R's polynomial in |cos(φ/2)| (Xu et al. 2011 eq. 13): C_0 = 0 and
+// C_{n+1} = ¼ a_n, the a_n of the Fresnel quintic's table (tables/r_fresnel.rs).
+fn r_coefficients(eta: f32, theta_d: f32) -> array<f32, 7> {
+    let g = params.grids[GRID_R_FRESNEL];
+    let cx = cell_x(g, log(clamp(eta, 1.0, 10.0)));
+    let cy = cell_y(g, abs(theta_d));
+    var out = array<f32, 7>(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for (var n = 0u; n < 6u; n++) {
+        out[n + 1u] = 0.25 * static_at(GRID_R_FRESNEL, cx, cy, n);
     }
     return out;
 }
 
 // 𝒩_R = Σ_k C_k 𝒞_k(λ′, δ) (eq. 14), from the table of 𝒞_k/Z and ln Z.
-fn r_convolved(eta: f32, cos_theta_d: f32, lambda_light: f32, delta: f32) -> f32 {
-    var c = r_coefficients(eta, cos_theta_d);
+fn r_convolved(eta: f32, theta_d: f32, lambda_light: f32, delta: f32) -> f32 {
+    var c = r_coefficients(eta, theta_d);
     let g = params.grids[GRID_COSINE];
     let cx = cell_x(g, log(clamp(lambda_light, 0.001, 10.0)));
     let cy = cell_y(g, abs(wrap_pi(delta)));

@@ -154,9 +154,9 @@ fn local_term(back_in: array<Averages, 3>, theta_o: f32, theta_j: f32, sigma: f3
 }
 
 // 𝒩^G_R = (1/π) Σ_k C_k W_k(δ) (eqs. 13, 28).
-fn r_half(cos_theta_d: f32, w_in: array<f32, 7>) -> f32 {
+fn r_half(theta_d: f32, w_in: array<f32, 7>) -> f32 {
     var w = w_in;
-    var c = r_coefficients(params.eta, cos_theta_d);
+    var c = r_coefficients(params.eta, theta_d);
     var sum = 0.0;
     for (var k = 1u; k < 7u; k++) {
         sum += c[k] * w[k];

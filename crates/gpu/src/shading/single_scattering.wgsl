@@ -27,7 +27,7 @@ fn integrand(it: Integrand, s: Incident) -> vec3<f32> {
         case 0u, 1u, 2u: {
             let lambda = it.bandwidth / sqrt(s.cos_i * it.cos_j);
             if (it.kind == KIND_R) {
-                return vec3<f32>(r_convolved(params.eta, sqrt(s.cos2_d), lambda, it.delta));
+                return vec3<f32>(r_convolved(params.eta, s.theta_d, lambda, it.delta));
             }
             if (it.kind == KIND_TT) {
                 return tt_convolved(tt_lobes(s.theta_d), sharpness(lambda), it);
@@ -36,7 +36,7 @@ fn integrand(it: Integrand, s: Incident) -> vec3<f32> {
             return trt_convolved(trt_lobes(eta, s.theta_d), sharpness(lambda), it);
         }
         case 3u: {
-            return vec3<f32>(r_half(sqrt(s.cos2_d), it.half_w));
+            return vec3<f32>(r_half(s.theta_d, it.half_w));
         }
         case 4u: {
             return global_tt(tt_lobes(s.theta_d), it.delta);
