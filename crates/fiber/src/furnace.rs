@@ -65,8 +65,8 @@ fn integrate(
     resolution: usize,
 ) -> (LobeValues, usize) {
     let gl = GaussLegendre::cached(NODES_PER_PANEL);
-    let thetas = panel_nodes(gl, &theta_breaks(theta_i, rule, resolution));
-    let phis = panel_nodes(gl, &uniform_breaks(-PI, PI, PHI_PANELS * resolution));
+    let thetas = gl.panel_nodes(&theta_breaks(theta_i, rule, resolution));
+    let phis = gl.panel_nodes(&uniform_breaks(-PI, PI, PHI_PANELS * resolution));
     let wi = FiberAngles::new(theta_i, 0.0);
     let mut sum = LobeValues::default();
     for &(theta, wt) in &thetas {
@@ -106,20 +106,6 @@ fn theta_breaks(theta_i: f64, rule: FurnaceRule, resolution: usize) -> Vec<f64> 
 
 fn uniform_breaks(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect()
-}
-
-/// Gauss–Legendre nodes and weights on every panel between consecutive breaks.
-fn panel_nodes(gl: &GaussLegendre, breaks: &[f64]) -> Vec<(f64, f64)> {
-    breaks
-        .windows(2)
-        .flat_map(|w| {
-            let (mid, half) = (0.5 * (w[0] + w[1]), 0.5 * (w[1] - w[0]));
-            gl.nodes
-                .iter()
-                .zip(&gl.weights)
-                .map(move |(x, wt)| (mid + half * x, wt * half))
-        })
-        .collect()
 }
 
 #[cfg(test)]

@@ -354,6 +354,20 @@ impl GaussLegendre {
             .sum::<f64>()
             * half
     }
+
+    /// (node, weight) pairs of this rule on every panel between consecutive `breaks`.
+    pub fn panel_nodes(&self, breaks: &[f64]) -> Vec<(f64, f64)> {
+        breaks
+            .windows(2)
+            .flat_map(|w| {
+                let (mid, half) = (0.5 * (w[0] + w[1]), 0.5 * (w[1] - w[0]));
+                self.nodes
+                    .iter()
+                    .zip(&self.weights)
+                    .map(move |(x, wt)| (mid + half * x, wt * half))
+            })
+            .collect()
+    }
 }
 
 /// The largest rule [`GaussLegendre::cached`] holds.

@@ -4,8 +4,8 @@
 //! (= cos γ_i, since Φ_R = −2γ_i) so that its convolution with a light is Σ_k C_k 𝒞_k (eq. 14).
 //! They take F from Schlick's approximation at the 3D incidence cosine cos θ_d · x, which is
 //! degree 5 in x. The reference model (Marschner et al. 2003) uses the oblique factor
-//! F(η′, η″, γ_i) with Bravais' indices, and Schlick falls short of it by 6–7 % of R's energy at
-//! θ_d ≤ 0.6 and by 30 % at θ_d = 1.2 (F(η″) rises towards total reflection as η″ shrinks).
+//! F(η′, η″, γ_i) with Bravais' indices, and Schlick falls short of it away from θ_d = 0 (F(η″)
+//! rises towards total reflection as η″ shrinks; `quintic_holds_the_model_fresnel` compares).
 //! The same polynomial degree holds the exact factor far better: F(γ) ≈ Σ_{n=0}^{5} a_n xⁿ by
 //! least squares in N_R's own metric, min ∫₀^{π/2} (x (F − P(x)))² dγ, so the C_k of eq. 14 become
 //! C_{n+1} = ¼ a_n and nothing downstream changes. The normal equations' matrix
@@ -31,17 +31,7 @@ struct Fit {
 fn fit() -> &'static Fit {
     static FIT: OnceLock<Fit> = OnceLock::new();
     FIT.get_or_init(|| {
-        let rule = GaussLegendre::cached(24);
-        let nodes: Vec<(f64, f64)> = PANELS
-            .windows(2)
-            .flat_map(|p| {
-                let (mid, half) = (0.5 * (p[0] + p[1]), 0.5 * (p[1] - p[0]));
-                rule.nodes
-                    .iter()
-                    .zip(&rule.weights)
-                    .map(move |(x, w)| (mid + half * x, half * w))
-            })
-            .collect();
+        let nodes = GaussLegendre::cached(24).panel_nodes(&PANELS);
         let mut gram = [[0.0; TERMS]; TERMS];
         for &(gamma, w) in &nodes {
             let x = gamma.cos();
