@@ -50,6 +50,7 @@ enum Command {
 }
 
 fn main() {
+    die_quietly_on_a_closed_pipe();
     quiet_vulkan_device_select();
     let cli = Cli::parse();
     let result = match cli.command {
@@ -68,6 +69,17 @@ fn main() {
     if let Err(err) = result {
         eprintln!("error: {}", one_line(&err));
         std::process::exit(1);
+    }
+}
+
+/// `cuticle compare A B | head -1` closes the pipe before the summary is written: Rust ignores
+/// SIGPIPE, so `println!` then panics on the broken pipe. Like every Unix filter, end instead,
+/// silently, by the signal's default action (exit status 128 + SIGPIPE to the shell).
+fn die_quietly_on_a_closed_pipe() {
+    // SAFETY: called first in `main`, before any thread starts; it only restores the signal's
+    // default disposition.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 

@@ -553,6 +553,31 @@ fn messages_stay_short_and_say_each_cause_once() {
     );
 }
 
+/// A reader that closes the pipe early (`cuticle … | head -1`) ends the command by SIGPIPE, as
+/// any Unix filter, and not by a panic on the broken pipe.
+#[test]
+fn a_closed_stdout_ends_the_command_without_a_panic() {
+    use std::os::unix::process::ExitStatusExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("g");
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cuticle"))
+        .args(["groom", "make", "--strands", "5", "--out"])
+        .arg(&out)
+        .stdout(writer)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(
+        run.status.signal(),
+        Some(libc::SIGPIPE),
+        "{:?}: {err}",
+        run.status
+    );
+}
+
 #[test]
 fn groom_make_writes_its_groom_and_record_as_a_set() {
     let tmp = tempfile::tempdir().unwrap();
