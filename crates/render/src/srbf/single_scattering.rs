@@ -95,11 +95,7 @@ pub fn modes<L: AzimuthalLobes>(
             2.0 * beta,
         );
         window.integrate_incident(m, &outgoing, |s| {
-            let Incident {
-                cos_i,
-                theta_d,
-                cos2_d,
-            } = *s;
+            let Incident { cos_i, theta_d, .. } = *s;
             let lambda = light.bandwidth / (cos_i * cos_j).sqrt();
             match t {
                 0 => DVec3::splat(r_convolved(
