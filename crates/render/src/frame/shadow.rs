@@ -139,6 +139,44 @@ pub fn transmittance(
     out
 }
 
+/// Deep opacity maps of directional lights (λ = 0), kept to read T̃ at any world point
+/// (where the groom may later be sampled, not only at its points).
+pub struct DirectionalMaps {
+    maps: Vec<OpacityMap>,
+    density: f64,
+}
+
+impl DirectionalMaps {
+    /// One map per direction (unit vectors toward the lights), parallel over them.
+    pub fn build(groom: &Groom, directions: &[DVec3], options: &ShadowOptions) -> Self {
+        let maps = if options.density <= 0.0 || groom.point_count() == 0 {
+            Vec::new()
+        } else {
+            directions
+                .par_iter()
+                .map(|&d| OpacityMap::build(groom, d, options.resolution))
+                .collect()
+        };
+        Self {
+            maps,
+            density: options.density,
+        }
+    }
+
+    /// The mean over the lights of T̃ at world point `x` (1 with no maps).
+    pub fn mean_transmittance(&self, x: DVec3) -> f64 {
+        if self.maps.is_empty() {
+            return 1.0;
+        }
+        let sum: f64 = self
+            .maps
+            .iter()
+            .map(|m| (-self.density * m.depth(x, 0.0)).exp())
+            .sum();
+        sum / self.maps.len() as f64
+    }
+}
+
 impl OpacityMap {
     /// The map of light arriving from `toward_light` (a unit vector pointing at the light).
     fn build(groom: &Groom, toward_light: DVec3, n: usize) -> Self {

@@ -339,7 +339,7 @@ impl Scene {
     }
 
     fn load_lit(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
-        let mut groom = resample::split_long_segments(load_groom(&spec.groom, spec.strands)?);
+        let mut groom = resample::shading_points(load_groom(&spec.groom, spec.strands)?);
         if let Some(path) = &spec.strand_absorption {
             groom = groom
                 .with_strand_absorption(path)
