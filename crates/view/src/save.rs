@@ -1,7 +1,8 @@
 //! Saving a look as a set of files that reopens it exactly (`cuticle view --scene` or
 //! `cuticle render --scene` on the `scene.toml`):
 //!
-//! - `groom.hair`: the groom's geometry (cyHair);
+//! - `groom.hair`: the groom's geometry (cyHair), with the points it is shaded at (the scene
+//!   says `shading_points = false`, so that reopening adds none);
 //! - `groom.absorption.json`: every strand's absorption as the renderer reads it, paint
 //!   included ([`cuticle_groom::strand_absorption`]);
 //! - `scene.toml`: the scene's settings, naming the two files above by absolute path, the
@@ -28,6 +29,8 @@ pub fn look_files(look: &Look, dir: &Path) -> Result<Vec<(&'static str, Vec<u8>)
     let absorption = cuticle_groom::strand_absorption::to_bytes(&scene.groom);
     let mut spec = scene.spec.clone();
     spec.groom = dir.join(GROOM).display().to_string();
+    // groom.hair holds the points the view shades: reopened, it keeps them.
+    spec.shading_points = false;
     spec.strand_absorption = Some(dir.join(ABSORPTION).display().to_string());
     spec.camera = Some(scene.camera);
     if Path::new(&spec.env).exists() {

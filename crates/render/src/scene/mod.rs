@@ -42,6 +42,10 @@ pub struct SceneSpec {
     pub groom: String,
     /// Strands of a preset groom.
     pub strands: usize,
+    /// Whether the loaded groom gets the points it is shaded at ([`resample::shading_points`]);
+    /// false for a groom file that holds them already, as a look saved by `cuticle view` does
+    /// (the tips' step reads maps of the groom, so it would not add the same points twice).
+    pub shading_points: bool,
     /// A per-strand absorption file laid over the groom's own (the JSON sidecar
     /// `cuticle view` saves with a painted groom: [`cuticle_groom::strand_absorption`]).
     pub strand_absorption: Option<String>,
@@ -76,6 +80,7 @@ impl Default for SceneSpec {
         Self {
             groom: "straight".into(),
             strands: Preset::DEFAULT_STRANDS,
+            shading_points: true,
             strand_absorption: None,
             env: "default".into(),
             env_rotate_deg: 0.0,
@@ -339,7 +344,10 @@ impl Scene {
     }
 
     fn load_lit(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Self, SceneError> {
-        let mut groom = resample::shading_points(load_groom(&spec.groom, spec.strands)?);
+        let mut groom = load_groom(&spec.groom, spec.strands)?;
+        if spec.shading_points {
+            groom = resample::shading_points(groom);
+        }
         if let Some(path) = &spec.strand_absorption {
             groom = groom
                 .with_strand_absorption(path)
