@@ -93,7 +93,7 @@ pub fn load_scene(
 pub fn load_groom(name: String, strands: usize, notify: impl Fn() + Send + 'static) -> Job {
     Job::spawn(format!("loading groom {name}"), notify, move |_| {
         let groom = cuticle_render::scene::load_groom(&name, strands).map_err(|e| e.to_string())?;
-        // As Scene::load does, so that a saved look reopens with the same points.
+        // As Scene::load does, so that the window shades the points a render shades.
         let groom = cuticle_render::scene::resample::shading_points(groom);
         if groom.strand_count() == 0 {
             return Err(format!("groom {name} has no strands"));

@@ -22,7 +22,8 @@ pub use tips::split_tips;
 use cuticle_groom::Groom;
 
 /// A loaded groom with the points it is shaded at: steps 1 and 2 of the module doc. The scene
-/// and the window both load grooms through it, so a saved look reopens with the same points.
+/// and the window both load grooms through it. Not idempotent (step 2 reads maps of the groom
+/// it is given), so a look saved with its points says `shading_points = false`.
 pub fn shading_points(groom: Groom) -> Groom {
     split_tips(split_long_segments(groom))
 }
