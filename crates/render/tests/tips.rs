@@ -1,8 +1,8 @@
-//! The tips' light (docs/tips.md): a block of parallel hanging strands cut level, its
-//! segments long, lit by a uniform environment, direct light by the brute force. The renderer
-//! blends colour along a segment between its points, so with the strands' own points the
-//! exposed tips' light spreads up each last segment and the bottom of the hair comes out too
-//! bright; the reference is the same block with every segment cut into [`FINE`] pieces.
+//! The tips' light (docs/tips.md): a block of parallel hanging strands of different lengths,
+//! its segments long, lit by a uniform environment, direct light by the brute force. The
+//! renderer blends colour along a segment between its points, so with the strands' own points
+//! the light of each last segment is the blend of an exposed tip and a shadowed point, not the
+//! light along it; the reference is the same block with every segment cut into [`FINE`] pieces.
 //! [`shading_points`] (the tips halved where their light bends) brings the bottom within a few
 //! per cent of it, adding points to the last segments only. (In this block the blend makes
 //! the bottom too dark; in straight.hair too bright: the sign is the bend's.)
@@ -22,8 +22,8 @@ const FINE: usize = 8;
 /// Segments per strand.
 const SEGMENTS: usize = 15;
 
-/// 40 × 40 strands 0.22 apart (jittered), hanging from z = 10, 5 to 10 units long (the hair thins toward
-/// the bottom, as where a groom's strands end at different lengths); segments
+/// 40 × 40 strands 0.22 apart (jittered), hanging from z = 10, 5 to 10 units long (the hair
+/// thins toward the bottom, as where a groom's strands end at different lengths); segments
 /// just short enough for [`split_long_segments`] to keep them whole, as in straight.hair.
 fn block() -> Groom {
     let mut positions = Vec::new();

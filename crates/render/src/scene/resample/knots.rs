@@ -9,15 +9,6 @@ use cuticle_groom::{Groom, GroomParts};
 pub struct Knots(pub Vec<Vec<f64>>);
 
 impl Knots {
-    /// The strands' own points.
-    pub fn of(groom: &Groom) -> Self {
-        Self(
-            (0..groom.strand_count())
-                .map(|s| (0..groom.strand_range(s).len()).map(|i| i as f64).collect())
-                .collect(),
-        )
-    }
-
     /// Whether every knot is one of the groom's own points.
     pub fn adds_nothing(&self, groom: &Groom) -> bool {
         self.0.iter().map(Vec::len).sum::<usize>() == groom.point_count()

@@ -8,9 +8,9 @@
 //! directional lights spread over the sphere (deep opacity maps, as shading reads them, at
 //! [`PROBE_RESOLUTION`]). A piece of the last segment is halved where T̄ at its midpoint departs
 //! from the mean of its ends' T̄ by more than [`BEND_TOLERANCE`], and its halves are tested in
-//! turn, down to a texel of the shading's maps. A tip whose light is linear keeps its points, whatever
-//! the segment's length. The probes depend on the groom alone, so a groom always gets the same
-//! points, whatever its lights.
+//! turn, down to a texel of the shading's maps. A tip whose light is linear keeps its points,
+//! whatever the segment's length. The probes depend on the groom alone, so a groom always gets
+//! the same points, whatever its lights.
 //!
 //! Only the last segment: testing every segment the same way adds points all along the
 //! strands for little change in the image (docs/tips.md has the measurement).
