@@ -34,7 +34,7 @@ use cuticle_render::scene::hair::HairParams;
 use cuticle_render::srbf::dual_scattering::{Dual, srbf_integral};
 use cuticle_render::srbf::single_scattering::{self as srbf_single, LocalLight, ShadingFiber};
 use cuticle_render::tables::back_scattering::BackScatteringTables;
-use cuticle_render::{Renderer, ShadowOptions};
+use cuticle_render::{Lobes, Renderer, ShadowOptions};
 use glam::DVec3;
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -273,7 +273,7 @@ impl<'a> Terms<'a> {
             .light(fiber, ao, &light, t)
         };
         Rendered {
-            single: brute_single::shade(&model, ao, &[light], &[t as f32]),
+            single: brute_single::shade(&model, ao, &[light], &[t as f32], Lobes::ALL),
             global: terms(0.0),
             multiple: terms(self.d_b),
         }

@@ -5,7 +5,7 @@
 //! (the crate's units, see lib.rs), with the same visibility and shadow maps as the SRBF path;
 //! multiple scattering in [`crate::brute::dual_scattering`].
 
-use crate::scene::{Scene, light_to_world};
+use crate::scene::{Lobes, Scene, light_to_world};
 use cuticle_fiber::{FiberAngles, FiberFrame, FiberModel, Marschner2003};
 use glam::DVec3;
 
@@ -86,19 +86,21 @@ pub fn local_lights(frame: &FiberFrame, lights: &[Directional]) -> Vec<LocalDire
 }
 
 /// Single-scattering L_o toward `ao` (the viewer's angles in the fiber frame) from every light
-/// `k` with transmittance `shadow[k]`.
+/// `k` with transmittance `shadow[k]`, the lobes of `shown` only (Marschner 2003 has no others).
 pub fn shade(
     model: &Marschner2003,
     ao: FiberAngles,
     lights: &[LocalDirectional],
     shadow: &[f32],
+    shown: Lobes,
 ) -> DVec3 {
     let cos_o = ao.theta.cos().max(1e-4);
     lights
         .iter()
         .zip(shadow)
         .map(|(l, &t)| {
-            let s = model.eval(l.angles, ao).total();
+            let v = model.eval(l.angles, ao).0;
+            let s = shown.sum([v[0], v[1], v[2]]);
             l.power * s * (t as f64 * l.angles.theta.cos() / cos_o)
         })
         .sum()

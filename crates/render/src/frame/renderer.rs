@@ -316,6 +316,7 @@ impl Renderer {
                 shown: scene.spec.lobes,
             }),
             (None, half) => FrameShader::Brute(BruteFrame {
+                shown: scene.spec.lobes,
                 lights: prepared
                     .lights
                     .iter()
@@ -524,6 +525,8 @@ impl SrbfFrame<'_> {
 /// What the brute-force reference reads at every point of a frame.
 struct BruteFrame<'a> {
     lights: Vec<Directional>,
+    /// The single-scattering lobes that shade (a debug view).
+    shown: Lobes,
     dual: Option<BruteDual<'a>>,
 }
 
@@ -533,7 +536,7 @@ impl BruteFrame<'_> {
         let model = Marschner2003::new(*point.fiber).expect("validated parameters");
         let lights = brute::local_lights(&point.frame, &self.lights);
         let ao = point.frame.angles(point.toward_eye);
-        let single = brute::shade(&model, ao, &lights, point.shadow);
+        let single = brute::shade(&model, ao, &lights, point.shadow, self.shown);
         let multiple = self.dual.map_or(DVec3::ZERO, |d| {
             d.shade(point.fiber, ao, &lights, point.shadow)
         });

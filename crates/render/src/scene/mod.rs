@@ -101,8 +101,9 @@ impl Default for SceneSpec {
 }
 
 /// The single-scattering lobes that shade (Marschner et al. 2003's R, TT, TRT): a lobe off
-/// contributes zero, so the three alone sum to all three. A debug view of the SRBF method;
-/// multiple scattering has its own switch ([`SceneSpec::multiple`]).
+/// contributes zero, so the three alone sum to all three. A debug view of the SRBF and brute
+/// methods' single scattering (the path tracer's bounces are not split by lobe); multiple
+/// scattering has its own switch ([`SceneSpec::multiple`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Lobes {
@@ -289,9 +290,9 @@ impl SceneSpec {
             STRANDS.check_usize(self.strands)?;
         }
         ENV_ROTATE_DEG.check(self.env_rotate_deg)?;
-        if self.lobes != Lobes::ALL && self.method != Method::Srbf {
+        if self.lobes != Lobes::ALL && self.method == Method::Path {
             return Err(SceneError::Invalid(
-                "lobes (per-lobe debug views) apply to the srbf method only".into(),
+                "lobes (per-lobe debug views) apply to the srbf and brute methods, not path".into(),
             ));
         }
         if let Some(camera) = &self.camera {
