@@ -13,7 +13,7 @@ use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
 use crate::special::{GaussLegendre, normal_pdf_fast};
 use crate::tilted_attenuation::{tilted_attenuation, tilted_reflectance};
-use crate::tilted_mirror::tilted_mirror_offset;
+use crate::tilted_mirror::{MirrorOffset, tilted_mirror_offsets};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -132,12 +132,23 @@ impl AzimuthalScattering {
     /// grazing mirrors run past the back of the fiber), N_R = ½ |dh/dφ| A(0, h)
     /// ([`crate::tilted_mirror`]; ¼ cos(φ/2) A(0, h) untilted).
     fn eval_r_tilted(&self, theta_i: f64, phi: f64, weighting: Weighting) -> DVec3 {
-        let phi = crate::frame::wrap_pi(phi);
-        [-2.0 * PI, 0.0, 2.0 * PI]
+        let mirrors = tilted_mirror_offsets(theta_i, self.scale_tilt, phi);
+        self.eval_r_at_mirrors(theta_i, &mirrors, weighting)
+    }
+
+    /// N_R through tilted scales at the offsets [`tilted_mirror_offsets`] found for φ (a
+    /// caller that needs them for R's cone as well solves them once).
+    pub(crate) fn eval_r_at_mirrors(
+        &self,
+        theta_i: f64,
+        mirrors: &[Option<MirrorOffset>; 3],
+        weighting: Weighting,
+    ) -> DVec3 {
+        mirrors
             .iter()
-            .filter_map(|k| tilted_mirror_offset(theta_i, self.scale_tilt, phi + k))
-            .map(|(h, dh)| {
-                let jac = 0.5 * dh;
+            .flatten()
+            .map(|&MirrorOffset { h, dh_dphi, .. }| {
+                let jac = 0.5 * dh_dphi;
                 match weighting {
                     Weighting::Attenuation => DVec3::splat(jac * self.reflectance(theta_i, h)),
                     Weighting::Selection => {

@@ -115,6 +115,23 @@ impl DEon2011 {
         }
     }
 
+    /// N_p for TT, TRT, TRRT and the remainder (R is the caller's): from the table when there
+    /// is one, else by quadrature.
+    pub(crate) fn azimuthal_beyond_r(
+        &self,
+        theta_i: f64,
+        theta_d: f64,
+        phi: f64,
+        weighting: Weighting,
+    ) -> [DVec3; 4] {
+        match &self.table {
+            Some(t) => t.eval_beyond_r(theta_i, theta_d, phi, weighting),
+            None => std::array::from_fn(|k| {
+                self.azimuthal.eval(k + 1, theta_i, theta_d, phi, weighting)
+            }),
+        }
+    }
+
     /// Σ_p M_p N_p per lobe; the p ≥ 4 remainder shares TRRT's longitudinal lobe.
     fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
         let theta_d = 0.5 * (wo.theta - wi.theta);
@@ -401,21 +418,6 @@ fn sample_phi_at(az: &AzimuthalScattering, p: usize, h: f64, eta_p: f64, u: f64)
             azimuthal_deflection(p as u32, h, eta_p) + offset
         }
     }
-}
-
-/// Completes a sample with its density and weight S / pdf; `None` where either vanishes.
-pub(crate) fn finish_sample(
-    model: &dyn FiberModel,
-    wi: FiberAngles,
-    wo: FiberAngles,
-    lobe: Lobe,
-    iterations: u32,
-) -> Option<FiberSample> {
-    let pdf = model.pdf(wi, wo);
-    if !(pdf > 0.0 && pdf.is_finite()) {
-        return None;
-    }
-    weighted_sample(wo, model.eval(wi, wo).total(), pdf, lobe, iterations)
 }
 
 /// A sample of S (all lobes, RGB) drawn with density `pdf`: weight S / pdf; `None` where the

@@ -9,6 +9,7 @@
 
 use crate::special::{
     I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
+    sin_cos_quadrant,
 };
 use std::f64::consts::PI;
 
@@ -30,11 +31,18 @@ impl LongitudinalLobe {
         }
     }
 
-    /// M(θ_o), per unit cos θ_o dθ_o; evaluated in log space so any v is stable.
+    /// M(θ_o), per unit cos θ_o dθ_o ([`LongitudinalWidth::eval`]).
     pub fn eval(&self, theta_o: f64) -> f64 {
-        let (sc, cc) = self.theta_cone.sin_cos();
-        let (so, co) = theta_o.sin_cos();
-        LongitudinalWidth::new(self.v).eval(sc, cc, so, co)
+        let (so, co) = sin_cos_quadrant(theta_o);
+        self.eval_sin_cos(so, co)
+    }
+
+    /// M at the outgoing inclination given by its sine and cosine, which a model that
+    /// evaluates several lobes at one θ_o finds once.
+    #[inline]
+    pub fn eval_sin_cos(&self, sin_o: f64, cos_o: f64) -> f64 {
+        let (sc, cc) = sin_cos_quadrant(self.theta_cone);
+        LongitudinalWidth::for_eval(self.v).eval(sc, cc, sin_o, cos_o)
     }
 
     /// θ_o distributed with density M(θ_o) cos θ_o, from two uniform numbers (d'Eon 2013): the
@@ -66,8 +74,9 @@ pub struct LongitudinalWidth {
     inv_v: f64,
     /// ln(csch(1/v) / 2v), without overflow for small v.
     log_norm: f64,
-    /// e^{−2/v}, for sampling.
-    exp_neg_2_over_v: f64,
+    /// e^{−2/v}, for sampling: found once by [`LongitudinalWidth::new`], left for each draw
+    /// by [`LongitudinalWidth::for_eval`].
+    exp_neg_2_over_v: Option<f64>,
 }
 
 impl LongitudinalWidth {
@@ -76,8 +85,21 @@ impl LongitudinalWidth {
         Self {
             v,
             inv_v: 1.0 / v,
+            exp_neg_2_over_v: Some((-2.0 / v).exp()),
+            ..Self::for_eval(v)
+        }
+    }
+
+    /// The width of a lobe evaluated once, as the non-separable model's are (their widths
+    /// change with φ): what [`LongitudinalWidth::eval`] needs and no more.
+    #[inline]
+    pub fn for_eval(v: f64) -> Self {
+        let v = v.max(MIN_VARIANCE);
+        Self {
+            v,
+            inv_v: 1.0 / v,
             log_norm: -v.ln() - 1.0 / v - log1m_exp_neg(2.0 / v),
-            exp_neg_2_over_v: (-2.0 / v).exp(),
+            exp_neg_2_over_v: None,
         }
     }
 
@@ -85,7 +107,10 @@ impl LongitudinalWidth {
     /// from two uniform numbers: [`LongitudinalLobe::sample`]'s draw, before its arcsine.
     #[inline]
     pub fn sample_sin(&self, sin_cone: f64, cos_cone: f64, u1: f64, u2: f64) -> f64 {
-        sample_sin_o(self.v, self.exp_neg_2_over_v, sin_cone, cos_cone, u1, u2)
+        let exp_neg_2_over_v = self
+            .exp_neg_2_over_v
+            .unwrap_or_else(|| (-2.0 * self.inv_v).exp());
+        sample_sin_o(self.v, exp_neg_2_over_v, sin_cone, cos_cone, u1, u2)
     }
 
     /// M for a cone and an outgoing inclination given by their sines and cosines (d'Eon et al. 2014 eq. 5).

@@ -11,13 +11,15 @@
 //! α > 0 raises the R cone, as in Marschner et al. 2003's α_R = 2α convention with α < 0 for
 //! human hair tilting R toward the root), and tests that both agree.
 
+use crate::special::sin_cos_quadrant;
+
 /// A direction (x, y) in Nusselt coordinates.
 pub type Nusselt = (f64, f64);
 
 /// Q(α, x, y) = (x cos α − z sin α, y).
 fn rotate(alpha: f64, (x, y): Nusselt) -> Nusselt {
     let z = (1.0 - x * x - y * y).max(0.0).sqrt();
-    let (s, c) = alpha.sin_cos();
+    let (s, c) = sin_cos_quadrant(alpha);
     (x * c - z * s, y)
 }
 
@@ -101,33 +103,54 @@ pub struct AtScale {
     pub y: f64,
     /// Cosine to the micro-normal: the Fresnel factor's argument.
     pub cos: f64,
-    alpha: f64,
+    tilt: Tilt,
     inside: bool,
 }
 
-/// Q with the normal component kept: the rotation (x, z) → (x cos α − z sin α, x sin α + z cos α).
-fn rotate_signed(alpha: f64, x: f64, z: f64) -> (f64, f64) {
-    let (s, c) = alpha.sin_cos();
-    (x * c - z * s, x * s + z * c)
+/// A scale tilt α with its sine and cosine, found once for every event of a path (a path
+/// through [`crate::tilted_attenuation`] meets dozens of scales, each turned into and out of).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tilt {
+    sin: f64,
+    cos: f64,
+}
+
+impl Tilt {
+    pub fn new(alpha: f64) -> Self {
+        let (sin, cos) = sin_cos_quadrant(alpha);
+        Self { sin, cos }
+    }
+
+    /// Q with the normal component kept, turning by α (`forward`) or by −α: the rotation
+    /// (x, z) → (x cos α − z sin α, x sin α + z cos α).
+    fn rotate(self, forward: bool, x: f64, z: f64) -> (f64, f64) {
+        let s = if forward { self.sin } else { -self.sin };
+        (x * self.cos - z * s, x * s + z * self.cos)
+    }
+}
+
+impl From<f64> for Tilt {
+    fn from(alpha: f64) -> Self {
+        Self::new(alpha)
+    }
 }
 
 impl AtScale {
     /// `d` arriving from outside at a scale tilted by α (the sign of §2.3, as the maps above).
-    pub fn outside(alpha: f64, d: Nusselt) -> Result<Self, Blocked> {
-        Self::new(alpha, d, false)
+    pub fn outside(alpha: impl Into<Tilt>, d: Nusselt) -> Result<Self, Blocked> {
+        Self::new(alpha.into(), d, false)
     }
 
     /// `d` arriving from inside the fiber.
-    pub fn inside(alpha: f64, d: Nusselt) -> Result<Self, Blocked> {
-        Self::new(alpha, d, true)
+    pub fn inside(alpha: impl Into<Tilt>, d: Nusselt) -> Result<Self, Blocked> {
+        Self::new(alpha.into(), d, true)
     }
 
-    fn new(alpha: f64, (x, y): Nusselt, inside: bool) -> Result<Self, Blocked> {
+    fn new(tilt: Tilt, (x, y): Nusselt, inside: bool) -> Result<Self, Blocked> {
         let z = (1.0 - x * x - y * y).max(0.0).sqrt();
         // Outside the micro frame is the macro frame turned by α (reflect_outside's inner
         // rotation), inside by −α.
-        let turn = if inside { -alpha } else { alpha };
-        let (xm, cos) = rotate_signed(turn, x, z);
+        let (xm, cos) = tilt.rotate(!inside, x, z);
         if cos <= 0.0 {
             return Err(Blocked::BackFacing);
         }
@@ -135,7 +158,7 @@ impl AtScale {
             x: xm,
             y,
             cos,
-            alpha,
+            tilt,
             inside,
         })
     }
@@ -143,8 +166,7 @@ impl AtScale {
     /// From the scale's frame back to the macro-normal's on `inside`'s side of the surface;
     /// `WrongSide` where the direction points through the macro surface.
     fn in_macro_frame(&self, (x, y): Nusselt, z: f64, inside: bool) -> Result<Nusselt, Blocked> {
-        let turn = if inside { self.alpha } else { -self.alpha };
-        let (x, z) = rotate_signed(turn, x, z);
+        let (x, z) = self.tilt.rotate(inside, x, z);
         if z <= 0.0 {
             return Err(Blocked::WrongSide);
         }

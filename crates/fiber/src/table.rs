@@ -138,18 +138,31 @@ impl AzimuthalTable {
         phi: f64,
         weighting: Weighting,
     ) -> [DVec3; 5] {
+        let [t1, t2, t3, rest] = self.eval_beyond_r(theta_i, theta_d, phi, weighting);
+        [
+            self.az.eval(0, theta_i, theta_d, phi, weighting),
+            t1,
+            t2,
+            t3,
+            rest,
+        ]
+    }
+
+    /// N_p(φ) for TT, TRT, TRRT and the remainder, the lobes the table holds: [`AzimuthalTable::eval_all`]
+    /// without R, for a caller that has R's offsets already.
+    pub fn eval_beyond_r(
+        &self,
+        theta_i: f64,
+        theta_d: f64,
+        phi: f64,
+        weighting: Weighting,
+    ) -> [DVec3; 4] {
         let pick = |v: Vec4| match weighting {
             Weighting::Attenuation => v.truncate().as_dvec3(),
             Weighting::Selection => DVec3::splat(v.w as f64),
         };
-        let [t1, t2, t3, rest] = self.taps(self.point(theta_i, self.eta_ratio(theta_d), phi));
-        [
-            self.az.eval(0, theta_i, theta_d, phi, weighting),
-            pick(t1),
-            pick(t2),
-            pick(t3),
-            pick(rest),
-        ]
+        self.taps(self.point(theta_i, self.eta_ratio(theta_d), phi))
+            .map(pick)
     }
 
     /// η/η′(θ_d), the table's θ_d coordinate, from θ_d.

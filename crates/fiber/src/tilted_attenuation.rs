@@ -22,8 +22,8 @@
 use crate::attenuation::attenuation;
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::LobeValues;
-use crate::nusselt::{AtScale, Blocked, Nusselt, propagate};
-use crate::special::GaussLegendre;
+use crate::nusselt::{AtScale, Blocked, Nusselt, Tilt, propagate};
+use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -66,7 +66,8 @@ impl TiltedAttenuation {
 
 /// The incident direction in Nusselt coordinates: (sin θ_i, h cos θ_i) (d'Eon et al. 2014 §2.2).
 pub fn incident(theta_i: f64, h: f64) -> Nusselt {
-    (theta_i.sin(), h.clamp(-1.0, 1.0) * theta_i.cos())
+    let (s, c) = sin_cos_quadrant(theta_i);
+    (s, h.clamp(-1.0, 1.0) * c)
 }
 
 /// A(0, h): the Fresnel factor at the tilted micro-normal, 0 where the scale is met from behind
@@ -96,7 +97,8 @@ pub fn tilted_attenuation(
         out.lobes = attenuation(theta_i, h, eta, mu_a);
         return out;
     }
-    let Ok(entry) = AtScale::outside(alpha, incident(theta_i, h)) else {
+    let tilt = Tilt::new(alpha);
+    let Ok(entry) = AtScale::outside(tilt, incident(theta_i, h)) else {
         out.back_facing = DVec3::ONE;
         return out;
     };
@@ -107,7 +109,7 @@ pub fn tilted_attenuation(
     }
     let power = DVec3::splat(1.0 - f);
     match entry.refract(eta) {
-        Ok(inward) => follow_inside(&mut out, inward, power, eta, alpha, mu_a),
+        Ok(inward) => follow_inside(&mut out, inward, power, eta, tilt, mu_a),
         Err(why) => out.lose(why, power),
     }
     out
@@ -120,12 +122,12 @@ fn follow_inside(
     mut travel: Nusselt,
     mut power: DVec3,
     eta: f64,
-    alpha: f64,
+    tilt: Tilt,
     mu_a: DVec3,
 ) {
     for p in 1..=MAX_SEGMENTS {
         power *= segment_transmittance(travel, mu_a);
-        let at = match AtScale::inside(alpha, propagate(travel)) {
+        let at = match AtScale::inside(tilt, propagate(travel)) {
             Ok(at) => at,
             Err(why) => return out.lose(why, power),
         };
@@ -158,7 +160,7 @@ fn segment_transmittance((x, y): Nusselt, mu_a: DVec3) -> DVec3 {
     }
     let z = (1.0 - x * x - y * y).max(0.0).sqrt();
     let length = 2.0 * z / (1.0 - x * x).max(1e-300);
-    (-mu_a * length).exp()
+    (-mu_a * length).map(exp_fast)
 }
 
 /// The fiber's energy budget for light at θ_i: ½ ∫ over h of [`tilted_attenuation`], i.e. each

@@ -8,31 +8,58 @@
 //! offset h = 0.86 mirrors to φ = −2.60 where −2γ_i = −2.07, so the last reflections before the
 //! scales cut R off land half a radian further round than Bravais puts them (the simulator's R
 //! reaches |φ| = 2.85 there). The tilted model places R by this mapping instead.
+//!
+//! The inverse is on the model's every evaluation (R's N and M both need it), so it is solved
+//! by Newton's method on γ with the mirror's analytic derivative, safeguarded by the bracket
+//! where the azimuth changes sign ([`tilted_mirror_offset`]); [`tilted_mirror_offset_bisection`]
+//! is its reference twin, the plain bisection the model first used.
 
 use crate::frame::{FiberAngles, wrap_pi};
-use glam::DVec3;
-use std::f64::consts::FRAC_PI_2;
+use crate::special::{asin_fast, sin_cos_quadrant};
+use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The mirror of ω_i = (sin θ_i, cos θ_i, 0) (φ_i = 0) at offset h about the scale normal tilted
 /// by α (the simulator's sign: toward +u for α > 0): n_s = (sin α, cos α cos γ, −cos α sin γ) at
 /// the surface point of azimuth −γ, h = sin γ. Its azimuth is unwrapped about −2γ, so that it
 /// is continuous and decreasing in h over the whole fiber.
 pub fn tilted_mirror(theta_i: f64, alpha: f64, h: f64) -> FiberAngles {
-    let gamma = h.clamp(-1.0, 1.0).asin();
-    let (sa, ca) = alpha.sin_cos();
-    let (sg, cg) = gamma.sin_cos();
-    let n = DVec3::new(sa, ca * cg, -ca * sg);
-    let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
-    let r = 2.0 * wi.dot(n) * n - wi;
-    let bravais = -2.0 * gamma;
-    let phi = bravais + wrap_pi(r.z.atan2(r.y) - bravais);
-    FiberAngles::new(r.x.clamp(-1.0, 1.0).asin(), phi)
+    let at = Mirror::new(theta_i, alpha).at(h.clamp(-1.0, 1.0).asin());
+    FiberAngles::new(at.sin_theta.clamp(-1.0, 1.0).asin(), at.phi)
+}
+
+/// The offset whose tilted mirror leaves at a given azimuth, and what R needs there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MirrorOffset {
+    /// The offset h = sin γ.
+    pub h: f64,
+    /// |dh/dφ| at that offset, the Jacobian of N_R.
+    pub dh_dphi: f64,
+    /// The mirror's inclination θ_o: R's cone.
+    pub theta: f64,
 }
 
 /// The offset h whose tilted mirror leaves at azimuth φ (unwrapped, as [`tilted_mirror`] gives
-/// it), and |dh/dφ| there: bisection on γ, where the mirror's azimuth decreases monotonically;
-/// `None` outside the range the fiber's offsets reach.
-pub fn tilted_mirror_offset(theta_i: f64, alpha: f64, phi: f64) -> Option<(f64, f64)> {
+/// it), with |dh/dφ| and the mirror's inclination there; `None` outside the range the fiber's
+/// offsets reach. Newton's method on γ, where the mirror's azimuth decreases monotonically,
+/// kept inside the bracket of the sign change (bisection where a step would leave it).
+pub fn tilted_mirror_offset(theta_i: f64, alpha: f64, phi: f64) -> Option<MirrorOffset> {
+    let mirror = Mirror::new(theta_i, alpha);
+    mirror.offset(phi, mirror.reach())
+}
+
+/// Every offset whose mirror leaves at the wrapped azimuth φ, i.e. at φ, φ − 2π or φ + 2π
+/// unwrapped, in that order, each where it exists (grazing mirrors run past the back of the
+/// fiber, so near φ = ±π two offsets can send light the same way).
+pub fn tilted_mirror_offsets(theta_i: f64, alpha: f64, phi: f64) -> [Option<MirrorOffset>; 3] {
+    let mirror = Mirror::new(theta_i, alpha);
+    let reach = mirror.reach();
+    let phi = wrap_pi(phi);
+    [0.0, -2.0 * PI, 2.0 * PI].map(|k| mirror.offset(phi + k, reach))
+}
+
+/// The reference twin of [`tilted_mirror_offset`]: bisection on γ to 1e-13, the slope by a
+/// central difference (the model's first form; its accuracy is the fast one's bound).
+pub fn tilted_mirror_offset_bisection(theta_i: f64, alpha: f64, phi: f64) -> Option<MirrorOffset> {
     let at = |g: f64| tilted_mirror(theta_i, alpha, g.sin()).phi;
     let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
     if !(phi <= at(lo) && phi >= at(hi)) {
@@ -54,7 +81,133 @@ pub fn tilted_mirror_offset(theta_i: f64, alpha: f64, phi: f64) -> Option<(f64, 
     let e = 1e-6;
     let slope = (at((gamma + e).min(FRAC_PI_2)) - at((gamma - e).max(-FRAC_PI_2)))
         / ((gamma + e).min(FRAC_PI_2) - (gamma - e).max(-FRAC_PI_2));
-    (slope < 0.0).then(|| (gamma.sin(), gamma.cos() / -slope))
+    (slope < 0.0).then(|| MirrorOffset {
+        h: gamma.sin(),
+        dh_dphi: gamma.cos() / -slope,
+        theta: tilted_mirror(theta_i, alpha, gamma.sin()).theta,
+    })
+}
+
+/// Newton steps after which the solve stops (it needs 3–5 for tilts of a few degrees).
+const MAX_STEPS: usize = 64;
+/// Newton step in γ below which the solve has converged (the step after it would be below
+/// 1e-16).
+const CONVERGED: f64 = 1e-9;
+
+/// The sines and cosines a mirror at any offset needs, found once per incidence.
+#[derive(Clone, Copy, Debug)]
+struct Mirror {
+    sin_theta: f64,
+    cos_theta: f64,
+    sin_alpha: f64,
+    cos_alpha: f64,
+}
+
+/// The mirror at one angle γ of the surface point.
+#[derive(Clone, Copy, Debug)]
+struct MirrorAt {
+    /// sin θ_o of the mirror.
+    sin_theta: f64,
+    /// Its azimuth, unwrapped about −2γ.
+    phi: f64,
+    /// dφ/dγ.
+    slope: f64,
+}
+
+/// The azimuths the mirror reaches, at γ = π/2 (least) and −π/2 (greatest).
+#[derive(Clone, Copy, Debug)]
+struct Reach {
+    least: f64,
+    greatest: f64,
+}
+
+impl Mirror {
+    fn new(theta_i: f64, alpha: f64) -> Self {
+        let (sin_theta, cos_theta) = theta_i.sin_cos();
+        let (sin_alpha, cos_alpha) = alpha.sin_cos();
+        Self {
+            sin_theta,
+            cos_theta,
+            sin_alpha,
+            cos_alpha,
+        }
+    }
+
+    /// r = 2(ω_i·n)n − ω_i with n = (sin α, cos α cos γ, −cos α sin γ), its azimuth
+    /// atan2(r_z, r_y) and that azimuth's derivative (r_y r_z′ − r_z r_y′)/(r_y² + r_z²).
+    fn at(&self, gamma: f64) -> MirrorAt {
+        let (sg, cg) = sin_cos_quadrant(gamma);
+        let (sa, ca) = (self.sin_alpha, self.cos_alpha);
+        let d = self.sin_theta * sa + self.cos_theta * ca * cg;
+        let dd = -self.cos_theta * ca * sg;
+        let ry = 2.0 * d * ca * cg - self.cos_theta;
+        let rz = -2.0 * d * ca * sg;
+        let dry = 2.0 * ca * (dd * cg - d * sg);
+        let drz = -2.0 * ca * (dd * sg + d * cg);
+        let bravais = -2.0 * gamma;
+        MirrorAt {
+            sin_theta: 2.0 * d * sa - self.sin_theta,
+            phi: bravais + wrap_pi(rz.atan2(ry) - bravais),
+            slope: (ry * drz - rz * dry) / (ry * ry + rz * rz),
+        }
+    }
+
+    fn reach(&self) -> Reach {
+        Reach {
+            least: self.at(FRAC_PI_2).phi,
+            greatest: self.at(-FRAC_PI_2).phi,
+        }
+    }
+
+    fn offset(&self, phi: f64, reach: Reach) -> Option<MirrorOffset> {
+        if !(phi <= reach.greatest && phi >= reach.least) {
+            return None;
+        }
+        // φ(lo) ≥ φ ≥ φ(hi) throughout; Bravais' root is the first guess.
+        let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
+        let mut gamma = (-0.5 * phi).clamp(lo, hi);
+        let mut at = self.at(gamma);
+        let mut step = hi - lo;
+        for _ in 0..MAX_STEPS {
+            let miss = at.phi - phi;
+            if miss > 0.0 {
+                lo = gamma;
+            } else {
+                hi = gamma;
+            }
+            let newton = gamma - miss / at.slope;
+            // Newton's step where it stays in the bracket and is under half the step before
+            // last (near the pole the azimuth turns fast, and plain Newton there can bounce
+            // between two sides of the root for ever); else bisection (Press et al. 2007's
+            // `rtsafe`).
+            let step_before = step;
+            let converged =
+                if newton > lo && newton < hi && 2.0 * (newton - gamma).abs() < step_before {
+                    step = (newton - gamma).abs();
+                    gamma = newton;
+                    // Quadratic convergence: a step this small leaves an error below 1e-16.
+                    step < CONVERGED
+                } else {
+                    let mid = 0.5 * (lo + hi);
+                    step = (mid - gamma).abs();
+                    gamma = mid;
+                    hi - lo < 1e-14
+                };
+            at = self.at(gamma);
+            if converged {
+                break;
+            }
+        }
+        // At grazing incidence the mirror can pass behind the pole, where its azimuth jumps
+        // by 2π instead of crossing φ: the bracket then closes on the jump, which no offset
+        // sends light through.
+        let (h, cos_gamma) = sin_cos_quadrant(gamma);
+        (at.slope < 0.0 && (at.phi - phi).abs() < 1e-9).then(|| MirrorOffset {
+            h,
+            dh_dphi: cos_gamma / -at.slope,
+            theta: asin_fast(at.sin_theta.clamp(-1.0, 1.0)),
+        })
+    }
 }
 
 #[cfg(test)]
@@ -84,8 +237,13 @@ mod tests {
         let (theta, alpha) = (1.3, (-4f64).to_radians());
         for &h in &[-0.95, -0.5, 0.0, 0.3, 0.86] {
             let phi = tilted_mirror(theta, alpha, h).phi;
-            let (back, dh) = tilted_mirror_offset(theta, alpha, phi).unwrap();
+            let MirrorOffset {
+                h: back,
+                dh_dphi: dh,
+                theta: cone,
+            } = tilted_mirror_offset(theta, alpha, phi).unwrap();
             assert!((back - h).abs() < 1e-9, "h {h}: {back}");
+            assert!((cone - tilted_mirror(theta, alpha, h).theta).abs() < 1e-9);
             let e = 1e-5;
             let numeric = 2.0 * e
                 / (tilted_mirror(theta, alpha, h - e).phi - tilted_mirror(theta, alpha, h + e).phi);
@@ -95,7 +253,75 @@ mod tests {
             );
         }
         // Untilted, |dh/dφ| = ½ cos(φ/2).
-        let (h, dh) = tilted_mirror_offset(0.5, 0.0, 1.0).unwrap();
-        assert!((h + 0.5f64.sin()).abs() < 1e-9 && (dh - 0.5 * 0.5f64.cos()).abs() < 1e-6);
+        let m = tilted_mirror_offset(0.5, 0.0, 1.0).unwrap();
+        assert!((m.h + 0.5f64.sin()).abs() < 1e-9 && (m.dh_dphi - 0.5 * 0.5f64.cos()).abs() < 1e-6);
+    }
+
+    /// Newton's solve against its reference twin, the bisection, over θ_i × α × φ (grazing
+    /// incidence and both tilt signs, the azimuths past ±π included): the same offsets to 1e-12,
+    /// the same Jacobian to the twin's central difference (1e-7 relative), the same reach;
+    /// except where the azimuth jumps (see [`Mirror::offset`]; at θ_i = ±1.5 with |α| ≥ 4°
+    /// the whole front half), which the bisection reports as a root of vanishing Jacobian
+    /// and Newton's solve as none.
+    #[test]
+    fn newton_matches_the_bisection() {
+        let mut worst_h: f64 = 0.0;
+        let mut worst_jacobian: f64 = 0.0;
+        let (mut solved, mut jumps) = (0, 0);
+        for &theta in &[-1.5, -1.3, -0.75, 0.0, 0.4, 1.1, 1.3, 1.5] {
+            for &alpha_deg in &[-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 6.0] {
+                let alpha = f64::to_radians(alpha_deg);
+                for k in 0..=400 {
+                    let phi = -3.3 + 6.6 * k as f64 / 400.0;
+                    let fast = tilted_mirror_offset(theta, alpha, phi);
+                    let reference = tilted_mirror_offset_bisection(theta, alpha, phi);
+                    if fast.is_none() && reference.is_none() {
+                        continue;
+                    }
+                    let (Some(f), Some(r)) = (fast, reference) else {
+                        // Only where the bisection closed on a jump of the azimuth (the mirror
+                        // passing behind the pole at grazing incidence), which it reports as
+                        // an offset of vanishing Jacobian.
+                        assert!(
+                            fast.is_none() && reference.is_some_and(|r| r.dh_dphi < 1e-5),
+                            "θ {theta} α {alpha_deg} φ {phi}: {fast:?} {reference:?}"
+                        );
+                        jumps += 1;
+                        continue;
+                    };
+                    solved += 1;
+                    worst_h = worst_h
+                        .max((f.h - r.h).abs())
+                        .max((f.theta - r.theta).abs());
+                    worst_jacobian = worst_jacobian.max((f.dh_dphi - r.dh_dphi).abs() / r.dh_dphi);
+                }
+            }
+        }
+        eprintln!(
+            "{solved} solves: h and θ within {worst_h:.1e}, dh/dφ within {worst_jacobian:.1e} \
+             relative; {jumps} jumps"
+        );
+        assert!(solved > 18_000, "{solved} {jumps}");
+        assert!(worst_h < 1e-12, "{worst_h}");
+        assert!(worst_jacobian < 1e-7, "{worst_jacobian}");
+    }
+
+    /// The offsets at a wrapped φ are those of φ, φ − 2π and φ + 2π, each where it exists.
+    #[test]
+    fn offsets_gather_every_branch() {
+        let (theta, alpha) = (1.3, f64::to_radians(-4.0));
+        for k in 0..100 {
+            let phi = -std::f64::consts::PI + 2.0 * std::f64::consts::PI * (k as f64 + 0.5) / 100.0;
+            let all: Vec<_> = tilted_mirror_offsets(theta, alpha, phi)
+                .into_iter()
+                .flatten()
+                .collect();
+            let each: Vec<_> = [0.0, -2.0, 2.0]
+                .iter()
+                .filter_map(|n| tilted_mirror_offset(theta, alpha, phi + n * std::f64::consts::PI))
+                .collect();
+            assert_eq!(all, each);
+            assert!(!all.is_empty(), "φ {phi}");
+        }
     }
 }

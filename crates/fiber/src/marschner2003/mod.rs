@@ -60,7 +60,7 @@
 //! Σ 1/|2 dΦ̂/dh| over the same roots is N_p with A = 1; for TRT a mixture of the two glint
 //! Gaussians, a wrapped Gaussian over Φ̂(2, ·)'s range and a uniform share. Every density is
 //! closed-form, so [`crate::FiberModel::pdf`] is exactly the density of [`crate::FiberModel::sample`], and
-//! weights are S / pdf ([`crate::deon2011::finish_sample`]).
+//! weights are S / pdf (`crate::deon2011::weighted_sample`).
 //!
 //! # Files
 //! - `params.rs`: [`MarschnerParams`], Table 1's defaults and their range checks.

@@ -37,26 +37,31 @@ pub mod cones;
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
 use crate::bravais::{azimuthal_deflection, eta_prime};
-use crate::deon2011::{DEon2011, finish_sample, sample_phi};
+use crate::deon2011::{DEon2011, sample_phi, weighted_sample};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::LongitudinalLobe;
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
+use crate::special::sin_cos_quadrant;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
-use crate::tilted_mirror::{tilted_mirror, tilted_mirror_offset};
+use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
     cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, trt_exit, tt_exit, tt_offset,
     variance_r, variance_trt, variance_tt,
 };
+use glam::DVec3;
 
-/// The offset whose tilted mirror leaves at φ (or φ ± 2π), if any.
-fn r_offset(theta_i: f64, alpha: f64, phi: f64) -> Option<f64> {
-    let phi = wrap_pi(phi);
-    [0.0, -2.0 * std::f64::consts::PI, 2.0 * std::f64::consts::PI]
-        .iter()
-        .find_map(|k| tilted_mirror_offset(theta_i, alpha, phi + k))
-        .map(|(h, _)| h)
+/// No R offsets: the paper's form, or a lobe other than R.
+const NO_MIRRORS: [Option<MirrorOffset>; 3] = [None; 3];
+
+/// What an evaluation at one (ω_i, ω_o) needs under either weighting: θ_d, φ, R's offsets
+/// and M_p at θ_o.
+struct Pair {
+    theta_d: f64,
+    phi: f64,
+    mirrors: [Option<MirrorOffset>; 3],
+    m: [f64; 4],
 }
 
 /// Fixed-point iterations per sample unless set otherwise (d'Eon et al. 2014 Figure 7 uses 6).
@@ -148,18 +153,40 @@ impl NonSeparable {
     /// energy, where the per-direction θ_d loses up to 17 % at grazing incidence (albedo 0.83
     /// at β = 0.3, θ_i = 1.0; 0.87 at β = 0.04, θ_i = 1.4, measured with `furnace::albedo`).
     pub fn longitudinal(&self, p: usize, theta_i: f64, phi: f64) -> LongitudinalLobe {
+        let mirrors = match p {
+            0 => self.mirrors(theta_i, phi),
+            _ => NO_MIRRORS,
+        };
+        self.longitudinal_at(p, theta_i, phi, &mirrors)
+    }
+
+    /// R's offsets at (θ_i, φ) in the tilted model ([`tilted_mirror_offsets`]): N_R and R's
+    /// cone both need them, so an evaluation solves them once. None in the paper's form.
+    fn mirrors(&self, theta_i: f64, phi: f64) -> [Option<MirrorOffset>; 3] {
+        match self.scales {
+            Scales::Tilted => tilted_mirror_offsets(theta_i, self.params.alpha, phi),
+            Scales::Paper => NO_MIRRORS,
+        }
+    }
+
+    /// [`NonSeparable::longitudinal`] with R's offsets already solved.
+    fn longitudinal_at(
+        &self,
+        p: usize,
+        theta_i: f64,
+        phi: f64,
+        mirrors: &[Option<MirrorOffset>; 3],
+    ) -> LongitudinalLobe {
         let FiberParams {
             eta, beta, alpha, ..
         } = self.params;
         let theta_d = -theta_i;
         let tilted = self.scales == Scales::Tilted;
         match p {
-            0 => match tilted.then(|| r_offset(theta_i, alpha, phi)).flatten() {
-                // The exact mirror at the offset that reflects to φ; v_R = 2β²(1 − h²) (eq. 6).
-                Some(h) => LongitudinalLobe::new(
-                    2.0 * beta * beta * (1.0 - h * h),
-                    tilted_mirror(theta_i, alpha, h).theta,
-                ),
+            // The exact mirror at the offset that reflects to φ (the first of φ, φ − 2π,
+            // φ + 2π that one reaches); v_R = 2β²(1 − h²) (eq. 6).
+            0 => match mirrors.iter().flatten().next() {
+                Some(m) => LongitudinalLobe::new(2.0 * beta * beta * (1.0 - m.h * m.h), m.theta),
                 None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
             },
             1 => {
@@ -183,13 +210,56 @@ impl NonSeparable {
         }
     }
 
-    fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
+    /// N_p for every lobe, R's from its solved offsets where the scales tilt it.
+    fn azimuthal_at(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> [DVec3; 5] {
+        let az = self.azimuthal();
+        let r = if az.scale_tilt != 0.0 {
+            az.eval_r_at_mirrors(theta_i, &pair.mirrors, weighting)
+        } else {
+            az.eval(0, theta_i, pair.theta_d, pair.phi, weighting)
+        };
+        let [tt, trt, trrt, rest] =
+            self.deon
+                .azimuthal_beyond_r(theta_i, pair.theta_d, pair.phi, weighting);
+        [r, tt, trt, trrt, rest]
+    }
+
+    /// What one (ω_i, ω_o) pair needs under either weighting, found once.
+    fn pair(&self, wi: FiberAngles, wo: FiberAngles) -> Pair {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
-        let n = self.deon.azimuthal_all(wi.theta, theta_d, phi, weighting);
-        let m: [f64; 4] =
-            std::array::from_fn(|p| self.longitudinal(p, wi.theta, phi).eval(wo.theta));
-        LobeValues::separable(m, n)
+        let mirrors = self.mirrors(wi.theta, phi);
+        let (sin_o, cos_o) = sin_cos_quadrant(wo.theta);
+        let m = std::array::from_fn(|p| {
+            self.longitudinal_at(p, wi.theta, phi, &mirrors)
+                .eval_sin_cos(sin_o, cos_o)
+        });
+        Pair {
+            theta_d,
+            phi,
+            mirrors,
+            m,
+        }
+    }
+
+    fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
+        let pair = self.pair(wi, wo);
+        LobeValues::separable(pair.m, self.azimuthal_at(&pair, wi.theta, weighting))
+    }
+
+    /// S and the sampling density of one pair together, R's offsets and the M_p found once: the
+    /// same arithmetic as [`FiberModel::eval`] and [`FiberModel::pdf`], so identical results.
+    fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (LobeValues, f64) {
+        let pair = self.pair(wi, wo);
+        let s = LobeValues::separable(
+            pair.m,
+            self.azimuthal_at(&pair, wi.theta, Weighting::Attenuation),
+        );
+        let pdf = LobeValues::separable(
+            pair.m,
+            self.azimuthal_at(&pair, wi.theta, Weighting::Selection),
+        );
+        (s, pdf.total().x)
     }
 
     /// θ_o and φ for TT or TRT by the fixed-point iteration of §3: guess θ_o = −θ_i, then
@@ -267,7 +337,8 @@ impl FiberModel for NonSeparable {
             }
         };
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
-        finish_sample(self, wi, wo, Lobe::from_index(p), iterations)
+        let (s, pdf) = self.eval_and_pdf(wi, wo);
+        weighted_sample(wo, s.total(), pdf, Lobe::from_index(p), iterations)
     }
 
     /// The density the sampling procedure is built to realise: Σ_p M_p N_p with A replaced by
