@@ -1,5 +1,7 @@
 //! Fresnel reflectance of a smooth dielectric interface.
 
+use crate::special::sin_cos_quadrant;
+
 /// Unpolarised Fresnel reflectance for light arriving at cosine `cos_i` (> 0, measured from the
 /// normal on the incident side) onto a medium of relative index `eta` (transmitted / incident).
 /// Total internal reflection returns 1.
@@ -19,8 +21,16 @@ pub fn fresnel_dielectric(cos_i: f64, eta: f64) -> f64 {
 /// perpendicular component from η′ and the parallel component from η″ (Marschner et al. 2003 "Definition
 /// of F"). `eta_prime`, `eta_double_prime` below 1 describe light leaving the fiber.
 pub fn fresnel_oblique(eta_prime: f64, eta_double_prime: f64, gamma: f64) -> f64 {
-    let s = polarised_reflectance(eta_prime, gamma, Polarisation::Perpendicular);
-    let p = polarised_reflectance(eta_double_prime, gamma, Polarisation::Parallel);
+    let (sin_i, cos_i) = sin_cos_quadrant(gamma);
+    fresnel_oblique_at(eta_prime, eta_double_prime, sin_i, cos_i.abs())
+}
+
+/// [`fresnel_oblique`] at the angle of sine `sin_i` and cosine `cos_i` ≥ 0, for a caller that
+/// has them.
+#[inline]
+pub fn fresnel_oblique_at(eta_prime: f64, eta_double_prime: f64, sin_i: f64, cos_i: f64) -> f64 {
+    let s = polarised_reflectance(eta_prime, sin_i, cos_i, Polarisation::Perpendicular);
+    let p = polarised_reflectance(eta_double_prime, sin_i, cos_i, Polarisation::Parallel);
     0.5 * (s + p)
 }
 
@@ -29,10 +39,10 @@ enum Polarisation {
     Parallel,
 }
 
-/// |r|² of one polarisation at incidence angle `gamma` onto relative index `eta`.
-fn polarised_reflectance(eta: f64, gamma: f64, pol: Polarisation) -> f64 {
-    let cos_i = gamma.cos().abs();
-    let sin_t = gamma.sin() / eta;
+/// |r|² of one polarisation at the incidence angle of sine `sin_i` and cosine `cos_i` ≥ 0
+/// onto relative index `eta`.
+fn polarised_reflectance(eta: f64, sin_i: f64, cos_i: f64, pol: Polarisation) -> f64 {
+    let sin_t = sin_i / eta;
     if sin_t.abs() >= 1.0 {
         return 1.0;
     }
@@ -60,7 +70,12 @@ mod tests {
     fn brewster_angle_kills_the_parallel_component() {
         let eta: f64 = 1.5;
         let brewster = eta.atan();
-        let s = polarised_reflectance(eta, brewster, Polarisation::Perpendicular);
+        let s = polarised_reflectance(
+            eta,
+            brewster.sin(),
+            brewster.cos(),
+            Polarisation::Perpendicular,
+        );
         assert!((fresnel_oblique(eta, eta, brewster) - 0.5 * s).abs() < 1e-15);
         assert!((fresnel_dielectric(brewster.cos(), eta) - 0.5 * s).abs() < 1e-15);
     }

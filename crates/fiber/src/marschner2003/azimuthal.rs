@@ -3,9 +3,10 @@
 
 use super::{CubicDeflection, MarschnerParams};
 use crate::azimuthal::wrapped_gaussian;
-use crate::bravais::{cos_theta_t, eta_double_prime, eta_prime, gamma_t, segment_transmittance};
+use crate::bravais::{cos_theta_t, eta_double_prime, eta_prime};
 use crate::frame::wrap_pi;
-use crate::fresnel::fresnel_oblique;
+use crate::fresnel::fresnel_oblique_at;
+use crate::special::{exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 
 /// The optics of the normal-plane problem at one θ_d: Bravais' indices and the refracted
@@ -16,34 +17,48 @@ pub(super) struct Interface {
     eta_double_prime: f64,
     cos_theta_t: f64,
     mu_a: DVec3,
+    /// c = asin(1/η′), which every lobe's cubic deflection shares.
+    critical_angle: f64,
 }
 
 impl Interface {
     pub(super) fn new(eta: f64, theta_d: f64, mu_a: DVec3) -> Self {
+        let eta_prime = eta_prime(eta, theta_d);
         Self {
-            eta_prime: eta_prime(eta, theta_d),
+            eta_prime,
             eta_double_prime: eta_double_prime(eta, theta_d),
             cos_theta_t: cos_theta_t(eta, theta_d),
             mu_a,
+            critical_angle: CubicDeflection::critical_angle(eta_prime),
         }
     }
 
     /// A(p, h) at h = sin γ_i (Marschner et al. 2003 "Finding A", with docs/conventions.md §8's transmittance; T^p
     /// as one exponential of the p segments' summed path).
+    /// One sine and cosine of γ_i serve both Fresnel factors: sin γ_t = sin γ_i / η′ (the
+    /// same γ_t as [`crate::bravais::gamma_t`]) and the chord's cos γ_t follow without trigonometry.
     pub(super) fn attenuation(&self, p: u32, gamma_i: f64) -> DVec3 {
-        let f = fresnel_oblique(self.eta_prime, self.eta_double_prime, gamma_i);
+        let (sin_i, cos_i) = sin_cos_quadrant(gamma_i);
+        let f = fresnel_oblique_at(self.eta_prime, self.eta_double_prime, sin_i, cos_i.abs());
         if p == 0 {
             return DVec3::splat(f);
         }
-        let gt = gamma_t(gamma_i.sin(), self.eta_prime);
-        let internal = fresnel_oblique(1.0 / self.eta_prime, 1.0 / self.eta_double_prime, gt);
-        let path = |mu: f64| segment_transmittance(p as f64 * mu, gt, self.cos_theta_t);
-        let t = DVec3::new(path(self.mu_a.x), path(self.mu_a.y), path(self.mu_a.z));
+        let sin_t = (sin_i / self.eta_prime).clamp(-1.0, 1.0);
+        let cos_t = (1.0 - sin_t * sin_t).sqrt();
+        let internal = fresnel_oblique_at(
+            1.0 / self.eta_prime,
+            1.0 / self.eta_double_prime,
+            sin_t,
+            cos_t,
+        );
+        // T^p, docs/conventions.md §8: exp(−2 p μ_a cos γ_t / cos θ_t).
+        let path = -2.0 * p as f64 * cos_t / self.cos_theta_t.max(1e-12);
+        let t = (self.mu_a * path).map(exp_fast);
         (1.0 - f).powi(2) * internal.powi(p as i32 - 1) * t
     }
 
     pub(super) fn deflection(&self, p: u32) -> CubicDeflection {
-        CubicDeflection::new(p, self.eta_prime)
+        CubicDeflection::with_critical_angle(p, self.critical_angle)
     }
 }
 
@@ -100,7 +115,15 @@ impl Caustic {
     /// Some transcriptions of the listing drop the "1 −" in t, which would switch the glint
     /// off at η′ = 2 and back on above; t is kept continuous here.
     pub fn new(eta_prime: f64, params: &MarschnerParams) -> Self {
-        let deflection = CubicDeflection::new(2, eta_prime);
+        Self::of(CubicDeflection::new(2, eta_prime), eta_prime, params)
+    }
+
+    /// [`Caustic::new`] with TRT's cubic deflection at η′ already made.
+    pub(super) fn of(
+        deflection: CubicDeflection,
+        eta_prime: f64,
+        params: &MarschnerParams,
+    ) -> Self {
         match deflection.fold() {
             Some(g) if eta_prime < 2.0 => {
                 let cos2 = g.cos().powi(2);
@@ -132,7 +155,7 @@ pub(super) fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 /// L ← L (1 − t g(w_c; φ − φ_c)/g(w_c; 0)) (1 − t g(w_c; φ + φ_c)/g(w_c; 0)), plus the glints
 /// t k_G A(2, h_c) Δh (g(w_c; φ − φ_c) + g(w_c; φ + φ_c)), g a wrapped unit Gaussian.
 pub(super) fn azimuthal_trt(interface: &Interface, params: &MarschnerParams, phi: f64) -> DVec3 {
-    let caustic = Caustic::new(interface.eta_prime, params);
+    let caustic = Caustic::of(interface.deflection(2), interface.eta_prime, params);
     let v = params.caustic_width.powi(2);
     let g0 = wrapped_gaussian(0.0, v);
     let (g_minus, g_plus) = (

@@ -2,6 +2,7 @@
 
 use super::MIN_SLOPE;
 use crate::cubic::Cubic;
+use crate::special::{asin_fast, cos_quadrant};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Φ̂(p, γ) = (6pc/π − 2)γ − (8pc/π³)γ³ + pπ with c = asin(1/η′) (Marschner 2003's cubic
@@ -32,7 +33,16 @@ impl GammaRoots {
 
 impl CubicDeflection {
     pub fn new(p: u32, eta_prime: f64) -> Self {
-        let c = (1.0 / eta_prime).clamp(-1.0, 1.0).asin();
+        Self::with_critical_angle(p, Self::critical_angle(eta_prime))
+    }
+
+    /// c = asin(1/η′), the one transcendental a deflection needs, shared by the lobes.
+    pub fn critical_angle(eta_prime: f64) -> f64 {
+        asin_fast((1.0 / eta_prime).clamp(-1.0, 1.0))
+    }
+
+    /// The deflection of lobe p given c = [`CubicDeflection::critical_angle`].
+    pub fn with_critical_angle(p: u32, c: f64) -> Self {
         let pc = p as f64 * c;
         Self {
             p,
@@ -94,6 +104,6 @@ impl CubicDeflection {
 
     /// 1/|2 dΦ̂/dh| = cos γ / (2 |dΦ̂/dγ|), the density in φ of the offsets near γ.
     pub(super) fn inverse_spread(&self, gamma: f64) -> f64 {
-        gamma.cos().max(0.0) / (2.0 * self.slope(gamma).abs().max(MIN_SLOPE))
+        cos_quadrant(gamma).max(0.0) / (2.0 * self.slope(gamma).abs().max(MIN_SLOPE))
     }
 }

@@ -1,6 +1,6 @@
 //! The longitudinal lobes M_p: unit-integral Gaussians in θ_h.
 
-use crate::special::{normal_pdf_fast, normal_quantile_fast};
+use crate::special::{exp_fast, normal_pdf_fast, normal_quantile_fast};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// M_p: a unit-integral Gaussian in θ_h (Marschner 2003's practical model, Table 1).
@@ -30,11 +30,13 @@ impl GaussianLobe {
     }
 
     /// Roughly the share of M_p that lands inside θ_o ∈ [−π/2, π/2] (a logistic stand-in for
-    /// the normal distribution function, within 2e-4): it only steers lobe choice.
+    /// the normal distribution function, within 2e-4): it only steers lobe choice. The
+    /// logistic ½(1 + tanh z) is written 1 / (1 + e^{−2z}), through [`exp_fast`].
     pub(super) fn approximate_mass(&self, theta_i: f64) -> f64 {
         let cdf = |theta_h: f64| {
             let x = (theta_h - self.alpha) / self.beta;
-            0.5 * (1.0 + ((2.0 / PI).sqrt() * (x + 0.044715 * x * x * x)).tanh())
+            let z = (2.0 / PI).sqrt() * (x + 0.044715 * x * x * x);
+            1.0 / (1.0 + exp_fast(-2.0 * z))
         };
         (cdf(0.5 * (theta_i + FRAC_PI_2)) - cdf(0.5 * (theta_i - FRAC_PI_2))).max(0.0)
     }

@@ -80,6 +80,7 @@ mod tests;
 
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::params::FiberParams;
+use crate::special::cos_quadrant;
 use glam::DVec3;
 use std::f64::consts::SQRT_2;
 use std::sync::OnceLock;
@@ -176,7 +177,7 @@ impl Marschner2003 {
 /// ½ cos θ_o / cos²θ_d: Marschner's 1/cos²θ_d, his M taken as a density in θ_o (½) and his
 /// curve-radiance S turned into power per steradian (cos θ_o); module documentation.
 fn per_steradian_factor(theta_o: f64, theta_d: f64) -> f64 {
-    0.5 * theta_o.cos().max(0.0) / theta_d.cos().powi(2).max(MIN_COS2_THETA_D)
+    0.5 * cos_quadrant(theta_o).max(0.0) / cos_quadrant(theta_d).powi(2).max(MIN_COS2_THETA_D)
 }
 
 /// Floor on cos²θ_d, reached only within 1e-6 rad of θ_o = −θ_i = ±π/2.
