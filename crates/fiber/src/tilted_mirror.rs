@@ -88,8 +88,10 @@ pub fn tilted_mirror_offset_bisection(theta_i: f64, alpha: f64, phi: f64) -> Opt
     })
 }
 
-/// Newton steps after which the solve stops (it needs 3–5 for tilts of a few degrees).
+/// Steps after which the bracketed solve stops (it needs 3–5 for tilts of a few degrees).
 const MAX_STEPS: usize = 64;
+/// Steps after which Newton's fast path gives up for the bracketed solve.
+const NEWTON_STEPS: usize = 12;
 /// Newton step in γ below which the solve has converged (the step after it would be below
 /// 1e-16).
 const CONVERGED: f64 = 1e-9;
@@ -152,10 +154,15 @@ impl Mirror {
         }
     }
 
+    /// At the fiber's edges γ = ±π/2 the micro-normal is (sin α, 0, ∓cos α), and the mirror
+    /// leaves at φ = ∓(π − δ) with δ = atan2(sin θ_i sin 2α, cos θ_i): one arctangent for
+    /// what [`Mirror::at`] gives at both ends (the test `reach_is_the_mirror_at_the_edges`).
     fn reach(&self) -> Reach {
+        let sin_2alpha = 2.0 * self.sin_alpha * self.cos_alpha;
+        let delta = (self.sin_theta * sin_2alpha).atan2(self.cos_theta);
         Reach {
-            least: self.at(FRAC_PI_2).phi,
-            greatest: self.at(-FRAC_PI_2).phi,
+            least: -PI + delta,
+            greatest: PI - delta,
         }
     }
 
@@ -163,6 +170,46 @@ impl Mirror {
         if !(phi <= reach.greatest && phi >= reach.least) {
             return None;
         }
+        self.offset_newton(phi)
+            .or_else(|| self.offset_bracketed(phi))
+    }
+
+    /// The fast path: Newton's method on g(γ) = r_z cos φ − r_y sin φ, the mirror's component
+    /// across the target azimuth, which needs no arctangent per step (its zeros are where the
+    /// mirror leaves at φ or at φ + π). Converged, the one arctangent of [`Mirror::finish`]
+    /// checks that it found φ itself; `None` sends the solve to [`Mirror::offset_bracketed`].
+    fn offset_newton(&self, phi: f64) -> Option<MirrorOffset> {
+        let (sin_phi, cos_phi) = if phi.abs() <= PI {
+            let (s, c) = sin_cos_quadrant(0.5 * phi);
+            (2.0 * s * c, 1.0 - 2.0 * s * s)
+        } else {
+            phi.sin_cos()
+        };
+        let (sa, ca) = (self.sin_alpha, self.cos_alpha);
+        let mut gamma = (-0.5 * phi).clamp(-FRAC_PI_2, FRAC_PI_2);
+        for _ in 0..NEWTON_STEPS {
+            let (sg, cg) = sin_cos_quadrant(gamma);
+            let d = self.sin_theta * sa + self.cos_theta * ca * cg;
+            let dd = -self.cos_theta * ca * sg;
+            let ry = 2.0 * d * ca * cg - self.cos_theta;
+            let rz = -2.0 * d * ca * sg;
+            let dry = 2.0 * ca * (dd * cg - d * sg);
+            let drz = -2.0 * ca * (dd * sg + d * cg);
+            let step = (rz * cos_phi - ry * sin_phi) / (drz * cos_phi - dry * sin_phi);
+            gamma -= step;
+            if gamma.abs() > FRAC_PI_2 || gamma.is_nan() {
+                return None;
+            }
+            if step.abs() < CONVERGED {
+                return self.finish(gamma, phi);
+            }
+        }
+        None
+    }
+
+    /// The safeguarded solve for what Newton's fast path leaves: Newton on the azimuth itself,
+    /// kept inside the bracket where it changes sign.
+    fn offset_bracketed(&self, phi: f64) -> Option<MirrorOffset> {
         // φ(lo) ≥ φ ≥ φ(hi) throughout; Bravais' root is the first guess.
         let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
         let mut gamma = (-0.5 * phi).clamp(lo, hi);
@@ -198,9 +245,15 @@ impl Mirror {
                 break;
             }
         }
-        // At grazing incidence the mirror can pass behind the pole, where its azimuth jumps
-        // by 2π instead of crossing φ: the bracket then closes on the jump, which no offset
-        // sends light through.
+        self.finish(gamma, phi)
+    }
+
+    /// The offset at a converged γ, if the mirror there leaves at φ with the azimuth falling:
+    /// at grazing incidence the mirror can pass behind the pole, where its azimuth jumps by 2π
+    /// instead of crossing φ, and the bracket then closes on the jump, which no offset sends
+    /// light through.
+    fn finish(&self, gamma: f64, phi: f64) -> Option<MirrorOffset> {
+        let at = self.at(gamma);
         let (h, cos_gamma) = sin_cos_quadrant(gamma);
         (at.slope < 0.0 && (at.phi - phi).abs() < 1e-9).then(|| MirrorOffset {
             h,
@@ -304,6 +357,25 @@ mod tests {
         assert!(solved > 18_000, "{solved} {jumps}");
         assert!(worst_h < 1e-12, "{worst_h}");
         assert!(worst_jacobian < 1e-7, "{worst_jacobian}");
+    }
+
+    #[test]
+    fn reach_is_the_mirror_at_the_edges() {
+        for &theta in &[-1.5, -0.7, 0.0, 0.3, 1.2, 1.5] {
+            for &alpha_deg in &[-6.0, -2.0, 0.0, 3.0] {
+                let mirror = Mirror::new(theta, f64::to_radians(alpha_deg));
+                let reach = mirror.reach();
+                let (least, greatest) = (mirror.at(FRAC_PI_2).phi, mirror.at(-FRAC_PI_2).phi);
+                assert!(
+                    (reach.least - least).abs() < 1e-14,
+                    "θ {theta} α {alpha_deg}"
+                );
+                assert!(
+                    (reach.greatest - greatest).abs() < 1e-14,
+                    "θ {theta} α {alpha_deg}"
+                );
+            }
+        }
     }
 
     /// The offsets at a wrapped φ are those of φ, φ − 2π and φ + 2π, each where it exists.
