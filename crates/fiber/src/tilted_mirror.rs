@@ -116,6 +116,16 @@ struct MirrorAt {
     slope: f64,
 }
 
+/// The mirror direction at one γ: x = sin θ_o, and y, z across the fiber with dy/dγ, dz/dγ.
+#[derive(Clone, Copy, Debug)]
+struct Reflected {
+    x: f64,
+    y: f64,
+    z: f64,
+    dy: f64,
+    dz: f64,
+}
+
 /// The azimuths the mirror reaches, at γ = π/2 (least) and −π/2 (greatest).
 #[derive(Clone, Copy, Debug)]
 struct Reach {
@@ -135,22 +145,31 @@ impl Mirror {
         }
     }
 
-    /// r = 2(ω_i·n)n − ω_i with n = (sin α, cos α cos γ, −cos α sin γ), its azimuth
-    /// atan2(r_z, r_y) and that azimuth's derivative (r_y r_z′ − r_z r_y′)/(r_y² + r_z²).
-    fn at(&self, gamma: f64) -> MirrorAt {
+    /// r = 2(ω_i·n)n − ω_i with n = (sin α, cos α cos γ, −cos α sin γ): its x and its
+    /// components across the fiber with their derivatives in γ.
+    #[inline]
+    fn mirror(&self, gamma: f64) -> Reflected {
         let (sg, cg) = sin_cos_quadrant(gamma);
         let (sa, ca) = (self.sin_alpha, self.cos_alpha);
         let d = self.sin_theta * sa + self.cos_theta * ca * cg;
         let dd = -self.cos_theta * ca * sg;
-        let ry = 2.0 * d * ca * cg - self.cos_theta;
-        let rz = -2.0 * d * ca * sg;
-        let dry = 2.0 * ca * (dd * cg - d * sg);
-        let drz = -2.0 * ca * (dd * sg + d * cg);
+        Reflected {
+            x: 2.0 * d * sa - self.sin_theta,
+            y: 2.0 * d * ca * cg - self.cos_theta,
+            z: -2.0 * d * ca * sg,
+            dy: 2.0 * ca * (dd * cg - d * sg),
+            dz: -2.0 * ca * (dd * sg + d * cg),
+        }
+    }
+
+    /// The mirror's azimuth atan2(r_z, r_y) and its derivative (r_y r_z′ − r_z r_y′)/(r_y² + r_z²).
+    fn at(&self, gamma: f64) -> MirrorAt {
+        let r = self.mirror(gamma);
         let bravais = -2.0 * gamma;
         MirrorAt {
-            sin_theta: 2.0 * d * sa - self.sin_theta,
-            phi: bravais + wrap_pi(rz.atan2(ry) - bravais),
-            slope: (ry * drz - rz * dry) / (ry * ry + rz * rz),
+            sin_theta: r.x,
+            phi: bravais + wrap_pi(r.z.atan2(r.y) - bravais),
+            slope: (r.y * r.dz - r.z * r.dy) / (r.y * r.y + r.z * r.z),
         }
     }
 
@@ -185,17 +204,10 @@ impl Mirror {
         } else {
             phi.sin_cos()
         };
-        let (sa, ca) = (self.sin_alpha, self.cos_alpha);
         let mut gamma = (-0.5 * phi).clamp(-FRAC_PI_2, FRAC_PI_2);
         for _ in 0..NEWTON_STEPS {
-            let (sg, cg) = sin_cos_quadrant(gamma);
-            let d = self.sin_theta * sa + self.cos_theta * ca * cg;
-            let dd = -self.cos_theta * ca * sg;
-            let ry = 2.0 * d * ca * cg - self.cos_theta;
-            let rz = -2.0 * d * ca * sg;
-            let dry = 2.0 * ca * (dd * cg - d * sg);
-            let drz = -2.0 * ca * (dd * sg + d * cg);
-            let step = (rz * cos_phi - ry * sin_phi) / (drz * cos_phi - dry * sin_phi);
+            let r = self.mirror(gamma);
+            let step = (r.z * cos_phi - r.y * sin_phi) / (r.dz * cos_phi - r.dy * sin_phi);
             gamma -= step;
             if gamma.abs() > FRAC_PI_2 || gamma.is_nan() {
                 return None;
