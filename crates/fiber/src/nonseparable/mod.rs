@@ -34,6 +34,7 @@
 //! form used here (see the test `tt_width_is_the_first_order_spread_of_the_exit_angle`).
 
 pub mod cones;
+mod tt_offsets;
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
 use crate::bravais::{azimuthal_deflection, eta_prime};
@@ -51,6 +52,8 @@ pub use cones::{
     variance_r, variance_trt, variance_tt,
 };
 use glam::DVec3;
+use std::sync::OnceLock;
+use tt_offsets::TtOffsets;
 
 /// No R offsets: the paper's form, or a lobe other than R.
 const NO_MIRRORS: [Option<MirrorOffset>; 3] = [None; 3];
@@ -86,6 +89,8 @@ pub struct NonSeparable {
     scales: Scales,
     deon: DEon2011,
     iterations: u32,
+    /// TT's offset for each azimuth, tabulated on first use.
+    tt_offsets: OnceLock<TtOffsets>,
 }
 
 impl NonSeparable {
@@ -110,6 +115,7 @@ impl NonSeparable {
             scales,
             deon: DEon2011::with_azimuthal(params, az)?,
             iterations: DEFAULT_ITERATIONS,
+            tt_offsets: OnceLock::new(),
         })
     }
 
@@ -190,7 +196,10 @@ impl NonSeparable {
                 None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
             },
             1 => {
-                let h = tt_offset(phi, eta_prime(eta, theta_d));
+                let h = self
+                    .tt_offsets
+                    .get_or_init(|| TtOffsets::build(eta))
+                    .offset(phi, eta_prime(eta, theta_d));
                 let cone = if tilted {
                     cone_tt_tilted(theta_i, alpha, eta, h)
                 } else {
