@@ -135,8 +135,8 @@ struct Reach {
 
 impl Mirror {
     fn new(theta_i: f64, alpha: f64) -> Self {
-        let (sin_theta, cos_theta) = theta_i.sin_cos();
-        let (sin_alpha, cos_alpha) = alpha.sin_cos();
+        let (sin_theta, cos_theta) = sin_cos_quadrant(theta_i);
+        let (sin_alpha, cos_alpha) = sin_cos_quadrant(alpha);
         Self {
             sin_theta,
             cos_theta,
