@@ -37,7 +37,13 @@ pub fn cos_theta_t(eta: f64, theta: f64) -> f64 {
 /// Transmittance of one internal segment: exp(−2 μ_a cos γ_t / cos θ_t), the chord of a unit
 /// circle at refracted offset γ_t, stretched by the inclination (docs/conventions.md §8 erratum).
 pub fn segment_transmittance(mu_a: f64, gamma_t: f64, cos_theta_t: f64) -> f64 {
-    exp_fast(-2.0 * mu_a * gamma_t.cos() / cos_theta_t.max(1e-12))
+    chord_transmittance(mu_a, gamma_t.cos(), cos_theta_t)
+}
+
+/// [`segment_transmittance`] from cos γ_t, for a caller that has it without the angle.
+#[inline]
+pub fn chord_transmittance(mu_a: f64, cos_gamma_t: f64, cos_theta_t: f64) -> f64 {
+    exp_fast(-2.0 * mu_a * cos_gamma_t / cos_theta_t.max(1e-12))
 }
 
 #[cfg(test)]

@@ -81,12 +81,10 @@ pub struct LongitudinalWidth {
 
 impl LongitudinalWidth {
     pub fn new(v: f64) -> Self {
-        let v = v.max(MIN_VARIANCE);
+        let width = Self::for_eval(v);
         Self {
-            v,
-            inv_v: 1.0 / v,
-            exp_neg_2_over_v: Some((-2.0 / v).exp()),
-            ..Self::for_eval(v)
+            exp_neg_2_over_v: Some((-2.0 / width.v).exp()),
+            ..width
         }
     }
 

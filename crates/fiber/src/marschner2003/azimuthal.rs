@@ -3,10 +3,10 @@
 
 use super::{CubicDeflection, MarschnerParams};
 use crate::azimuthal::wrapped_gaussian;
-use crate::bravais::{cos_theta_t, eta_double_prime, eta_prime};
+use crate::bravais::{chord_transmittance, cos_theta_t, eta_double_prime, eta_prime};
 use crate::frame::wrap_pi;
 use crate::fresnel::fresnel_oblique_at;
-use crate::special::{exp_fast, sin_cos_quadrant};
+use crate::special::sin_cos_quadrant;
 use glam::DVec3;
 
 /// The optics of the normal-plane problem at one θ_d: Bravais' indices and the refracted
@@ -51,9 +51,7 @@ impl Interface {
             sin_t,
             cos_t,
         );
-        // T^p, docs/conventions.md §8: exp(−2 p μ_a cos γ_t / cos θ_t).
-        let path = -2.0 * p as f64 * cos_t / self.cos_theta_t.max(1e-12);
-        let t = (self.mu_a * path).map(exp_fast);
+        let t = (p as f64 * self.mu_a).map(|mu| chord_transmittance(mu, cos_t, self.cos_theta_t));
         (1.0 - f).powi(2) * internal.powi(p as i32 - 1) * t
     }
 
