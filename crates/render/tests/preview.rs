@@ -13,8 +13,8 @@ use cuticle_light::SrbfLight;
 use cuticle_render::frame::renderer::srbf_lights;
 use cuticle_render::frame::sub_lights::{fibonacci_sphere, split_wide};
 use cuticle_render::preview::{
-    NO_SPLIT, PREVIEW_LIGHTS, PREVIEW_QUADRATURE, PREVIEW_TABLE_NODES, preview_lights,
-    preview_scene,
+    NO_SPLIT, PREVIEW_LIGHTS, PREVIEW_QUADRATURE, PREVIEW_SPLIT_BANDWIDTH, PREVIEW_TABLE_NODES,
+    preview_lights, preview_scene,
 };
 use cuticle_render::scene::hair::HairParams;
 use cuticle_render::tables::back_scattering::BackScatteringTables;
@@ -38,7 +38,7 @@ fn scene() -> &'static Scene {
 }
 
 /// The preview's lights before they were merged: the `count` fitted lights of most energy,
-/// each channel scaled to keep the fitted lights' energy (then split as a frame splits them).
+/// each channel scaled to keep the fitted lights' energy (then split at the preview's width).
 fn strongest(lights: &[SrbfLight], count: usize) -> Vec<SrbfLight> {
     let energy = |l: &SrbfLight| l.integral().element_sum();
     let mut kept = lights.to_vec();
@@ -106,17 +106,19 @@ fn the_preview_scene_shades_few_merged_lights() {
 }
 
 /// Against the full frame's lights (the fitted ones, wide ones split), the merged lights'
-/// radiance is closer than the old preview's (the 8 strongest fitted lights, split), and
-/// within a stated bound.
+/// radiance is closer than the old preview's (the 8 strongest fitted lights, split as the
+/// preview splits them), and within a stated bound.
 #[test]
 fn merged_lights_describe_the_map_better_than_the_strongest() {
     let scene = scene();
-    let split_bandwidth = scene.spec.shadows.split_bandwidth;
-    let full = split_wide(&scene.lights, split_bandwidth);
+    let full = split_wide(&scene.lights, scene.spec.shadows.split_bandwidth);
     let merged = radiance_error(&full, &preview_lights(scene));
     let old = radiance_error(
         &full,
-        &split_wide(&strongest(&scene.lights, PREVIEW_LIGHTS), split_bandwidth),
+        &split_wide(
+            &strongest(&scene.lights, PREVIEW_LIGHTS),
+            PREVIEW_SPLIT_BANDWIDTH,
+        ),
     );
     eprintln!("radiance error against the frame's lights: merged {merged:.3}, strongest {old:.3}");
     assert!(merged < old, "merged {merged}, strongest {old}");
@@ -135,7 +137,7 @@ fn the_preview_image_is_close_to_the_full_image() {
     assert_eq!((preview.width, preview.height), (full.width, full.height));
     let mut old = preview_scene(scene, 1);
     old.lights = strongest(&scene.lights, PREVIEW_LIGHTS);
-    old.spec.shadows.split_bandwidth = scene.spec.shadows.split_bandwidth;
+    old.spec.shadows.split_bandwidth = PREVIEW_SPLIT_BANDWIDTH;
     let (old, _, _) = renderer().render(&old);
     let e_preview = hair_rmse(&preview, &full, &prepared.background);
     let e_old = hair_rmse(&old, &full, &prepared.background);

@@ -20,13 +20,25 @@
 //! as a sum, T̄_j = Σ_k T_k ∫G_k S / Σ_k ∫G_k S. Lights up to √2 λ_s keep their own map (λ′
 //! would be narrower than the set's spacing). Every renderer that shades the frame's list of
 //! lights (the CPU's SRBF path and the GPU's) gets this without a change to its shading.
+//!
+//! The width λ_s: T seen from a point on the side of the hair that faces the camera is nearly a
+//! step, about 1 in front of the hair's tangent plane and small behind it, and TT (Marschner
+//! et al. 2003's N_TT, ±100° wide in azimuth about the back) takes its light from just behind
+//! that step. A sub-light whose Gaussian straddles the step brings the light of its centre's
+//! side, at that side's T, across it; so TT's shadowed light comes out too bright by an amount
+//! that falls only linearly with λ_s (tests/wide_light.rs, docs/multiple-scattering.md "The
+//! wide-light excess is the horizon's"). Finer sub-lights in a band about the horizon alone do
+//! not pay: a set of sub-lights narrower than a light's footprint must cover all of it, so a
+//! finer band carries a seam, and removing the seam costs the finer set nearly everywhere.
+//! [`SPLIT_BANDWIDTH`] is the compromise between that error and the sub-lights' number (the
+//! maps and the shading grow with it).
 
 use cuticle_light::SrbfLight;
 use glam::{DVec3, Vec3};
 use std::f64::consts::PI;
 
 /// Bandwidth λ_s of the sub-lights (lights wider than √2 λ_s are split).
-pub const SPLIT_BANDWIDTH: f64 = 0.5;
+pub const SPLIT_BANDWIDTH: f64 = 0.3;
 
 /// Sub-lights below this fraction of a light's largest one are dropped (their energy goes
 /// to the others).
@@ -142,7 +154,7 @@ mod tests {
     /// Narrow lights pass unchanged and first; wide lights share one set of sub-lights.
     #[test]
     fn narrow_lights_stay_and_wide_ones_share_the_set() {
-        let narrow = SrbfLight::new(Vec3::Y, 0.7, Vec3::ONE);
+        let narrow = SrbfLight::new(Vec3::Y, 1.3 * SPLIT_BANDWIDTH as f32, Vec3::ONE);
         let wide = [
             SrbfLight::new(Vec3::Y, 2.6, Vec3::ONE),
             SrbfLight::new(Vec3::X, 1.3, Vec3::ONE),

@@ -177,7 +177,8 @@ pub fn concentration(r: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::sub_lights::{SPLIT_BANDWIDTH, fibonacci_sphere, split_wide};
+    use crate::frame::sub_lights::{fibonacci_sphere, split_wide};
+    use crate::preview::PREVIEW_SPLIT_BANDWIDTH;
     use cuticle_light::evaluate_lights;
     use glam::Vec3;
 
@@ -202,9 +203,9 @@ mod tests {
         ]
     }
 
-    /// The lights a full frame shades: [`fitted`] with the wide ones split.
+    /// The lights a preview merges: [`fitted`] with the wide ones split.
     fn frame_lights() -> Vec<SrbfLight> {
-        split_wide(&fitted(), SPLIT_BANDWIDTH)
+        split_wide(&fitted(), PREVIEW_SPLIT_BANDWIDTH)
     }
 
     /// Relative L2 error over the sphere of `model`'s radiance against `truth`'s, channels
@@ -262,7 +263,7 @@ mod tests {
         let lights = frame_lights();
         assert!(fitted().len() > 8);
         let merged = radiance_error(&lights, &merge_lights(&lights, 8));
-        let old = split_wide(&strongest(&fitted(), 8), SPLIT_BANDWIDTH);
+        let old = split_wide(&strongest(&fitted(), 8), PREVIEW_SPLIT_BANDWIDTH);
         let strongest = radiance_error(&lights, &old);
         eprintln!("radiance error: merged {merged:.3}, strongest {strongest:.3}");
         assert!(merged < strongest, "merged {merged} strongest {strongest}");

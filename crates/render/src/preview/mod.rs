@@ -3,8 +3,9 @@
 //! tables depend on rebuilds them before it shades, so a preview scene
 //! ([`preview_scene`]) cuts
 //! - the pixels (`scale` times fewer along each axis, the caller's choice) and subsamples (one);
-//! - the lights: the frame's lights, the wide ones split ([`crate::frame::sub_lights`]), merged
-//!   into [`PREVIEW_LIGHTS`] carrying the same energy ([`merged_lights`]), and not split again;
+//! - the lights: the scene's lights, the wide ones split ([`crate::frame::sub_lights`]) at
+//!   [`PREVIEW_SPLIT_BANDWIDTH`], merged into [`PREVIEW_LIGHTS`] carrying the same energy
+//!   ([`merged_lights`]), and not split again;
 //! - the linear quadrature to at most [`PREVIEW_QUADRATURE`] segments (Xu et al. 2011 §4.2.2);
 //!
 //! and a preview renderer ([`crate::Renderer::for_preview`]) builds its back-scattering tables
@@ -21,6 +22,12 @@ pub const PREVIEW_LIGHTS: usize = 8;
 pub const PREVIEW_QUADRATURE: usize = 2;
 /// Nodes along each axis of a preview renderer's back-scattering tables.
 pub const PREVIEW_TABLE_NODES: usize = 16;
+
+/// The sub-lights' width of the split that is merged into a preview's lights: the pieces the
+/// clusters are made of, kept at what the merge was measured with (BENCHMARKS.md "Preview"), whatever
+/// the full frame's [`crate::ShadowOptions::split_bandwidth`] (finer pieces make no better
+/// eight lights).
+pub const PREVIEW_SPLIT_BANDWIDTH: f64 = 0.5;
 
 /// The split bandwidth of a preview scene: the largest a scene accepts
 /// ([`crate::scene::SHADOW_SPLIT_BANDWIDTH`]), above any light's bandwidth, so none is split.
@@ -41,9 +48,9 @@ pub fn preview_scene(scene: &Scene, scale: usize) -> Scene {
     s
 }
 
-/// The frame's lights (wide ones split as the full frame splits them) merged into
+/// The scene's lights (wide ones split at [`PREVIEW_SPLIT_BANDWIDTH`]) merged into
 /// [`PREVIEW_LIGHTS`].
 pub fn preview_lights(scene: &Scene) -> Vec<cuticle_light::SrbfLight> {
-    let split = split_wide(&scene.lights, scene.spec.shadows.split_bandwidth);
+    let split = split_wide(&scene.lights, PREVIEW_SPLIT_BANDWIDTH);
     merged_lights::merge_lights(&split, PREVIEW_LIGHTS)
 }
