@@ -44,6 +44,9 @@ pub struct GpuRenderer {
     resolve: wgpu::ComputePipeline,
     shadows: ShadowPipelines,
     draw: DrawPipelines,
+    /// The most opacity maps one batch builds (`None`: as many as the device's buffer limits
+    /// allow); see [`Self::with_shadow_batch`].
+    shadow_batch: Option<usize>,
 }
 
 impl GpuRenderer {
@@ -69,7 +72,15 @@ impl GpuRenderer {
             draw: DrawPipelines::new(device),
             gpu: gpu.clone(),
             cpu: cpu.clone(),
+            shadow_batch: None,
         }
+    }
+
+    /// This renderer building at most `maps` opacity maps per batch (at least one), as a device
+    /// with smaller buffer limits would: the shadows are the same, in more passes.
+    pub fn with_shadow_batch(mut self, maps: usize) -> Self {
+        self.shadow_batch = Some(maps.max(1));
+        self
     }
 
     pub fn device(&self) -> &GpuDevice {
@@ -203,6 +214,7 @@ impl GpuRenderer {
                 options: &scene.spec.shadows,
                 points: &drawing.visible,
                 point_count: visible,
+                max_batch: self.shadow_batch,
             },
         );
         let upload_seconds = start.elapsed().as_secs_f64();
@@ -331,6 +343,7 @@ impl GpuRenderer {
                 options: &scene.spec.shadows,
                 points: &frame.drawing.visible,
                 point_count: frame.visible,
+                max_batch: self.shadow_batch,
             },
         );
         let stopwatch = Stopwatch::new(device, &self.gpu.queue, 1);

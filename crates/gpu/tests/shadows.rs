@@ -14,7 +14,8 @@
 
 mod common;
 
-use common::{cpu, gpu, load, spec};
+use common::{cpu, device, gpu, load, spec};
+use cuticle_gpu::GpuRenderer;
 use cuticle_render::frame::renderer::shadows_of_lit;
 use cuticle_render::frame::shadow::transmittance;
 use cuticle_render::{Prepared, Scene, Timings};
@@ -108,4 +109,25 @@ fn no_density_and_black_lights_cast_no_shadow() {
     let (mean, _) = distance(&got, &want.shadow);
     assert!(mean < 2e-5, "{mean}");
     assert_eq!(frame.passes().shadow_steps, 5);
+}
+
+/// Maps built in batches, as a device whose buffer limit holds fewer maps builds them (lavapipe's
+/// 128 MiB holds 85 maps of 256²), give the same shadows as one batch, bit for bit, in five
+/// passes a batch.
+#[test]
+fn maps_built_in_batches_give_the_same_shadows() {
+    let scene = load(spec(40, "default", 8));
+    let whole = gpu().prepare(&scene).unwrap();
+    let batched = GpuRenderer::new(device(), cpu()).with_shadow_batch(7);
+    let frame = batched.prepare(&scene).unwrap();
+    let maps = cpu()
+        .draw(&scene, &mut Timings::default())
+        .lights
+        .iter()
+        .filter(|l| l.radiance != glam::DVec3::ZERO)
+        .count();
+    assert!(maps > 2 * 7, "{maps} maps make too few batches");
+    assert_eq!(whole.passes().shadow_steps, 5);
+    assert_eq!(frame.passes().shadow_steps, 5 * maps.div_ceil(7));
+    assert_eq!(batched.shadows(&frame), gpu().shadows(&whole));
 }

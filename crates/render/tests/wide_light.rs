@@ -8,6 +8,7 @@
 mod common;
 
 use common::{block, renderer};
+use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_light::{EnvMap, SrbfLight, evaluate_lights};
 use cuticle_render::{Lobes, Method, Scene, SceneSpec, ShadowOptions};
@@ -21,30 +22,43 @@ fn ground() -> Vec<SrbfLight> {
     )]
 }
 
-/// Σ over pixels of the hair's light (the image minus the environment behind it), per channel.
-fn hair_light(method: Method, split_bandwidth: f64) -> DVec3 {
-    let lights = ground();
+/// Direct light only, 48 × 64 with 2 × 2 subsamples, of `groom` under `lights` (and an
+/// environment map of them), shadowed by maps `resolution` texels wide, sub-lights
+/// `split_bandwidth` wide, and 6 · `brute_grid`² directions for the brute force.
+fn direct_scene(
+    groom: Groom,
+    lights: Vec<SrbfLight>,
+    method: Method,
+    split_bandwidth: f64,
+    (brute_grid, resolution): (usize, usize),
+) -> Scene {
     let env = EnvMap::from_fn(128, 64, |d| evaluate_lights(&lights, d).as_vec3());
-    let groom = generate(&GroomParams {
-        strands: 1500,
-        ..Preset::Straight.params()
-    })
-    .unwrap();
     let spec = SceneSpec {
         width: 48,
         height: 64,
         supersampling: 2,
         method,
-        brute_grid: 8,
+        brute_grid,
         multiple: false,
         shadows: ShadowOptions {
-            resolution: 64,
+            resolution,
             split_bandwidth,
             ..ShadowOptions::default()
         },
         ..SceneSpec::default()
     };
-    let (image, prepared, _) = renderer().render(&Scene::from_parts(spec, groom, env, lights));
+    Scene::from_parts(spec, groom, env, lights)
+}
+
+/// Σ over pixels of the hair's light (the image minus the environment behind it), per channel.
+fn hair_light(method: Method, split_bandwidth: f64) -> DVec3 {
+    let groom = generate(&GroomParams {
+        strands: 1500,
+        ..Preset::Straight.params()
+    })
+    .unwrap();
+    let scene = direct_scene(groom, ground(), method, split_bandwidth, (8, 64));
+    let (image, prepared, _) = renderer().render(&scene);
     image
         .pixels
         .iter()
@@ -82,28 +96,12 @@ fn all_round() -> Vec<SrbfLight> {
 /// block of hanging strands seen from the side, with the sub-lights `split_bandwidth` wide (the
 /// brute force's 6 · 12² directions are shadowed sharply, whatever the width).
 fn tt_all_round(method: Method, split_bandwidth: f64) -> DVec3 {
-    let lights = all_round();
-    let env = EnvMap::from_fn(128, 64, |d| evaluate_lights(&lights, d).as_vec3());
-    let spec = SceneSpec {
-        width: 48,
-        height: 64,
-        supersampling: 2,
-        method,
-        brute_grid: 12,
-        multiple: false,
-        lobes: Lobes {
-            r: false,
-            tt: true,
-            trt: false,
-        },
-        shadows: ShadowOptions {
-            resolution: 128,
-            split_bandwidth,
-            ..ShadowOptions::default()
-        },
-        ..SceneSpec::default()
+    let mut scene = direct_scene(block(), all_round(), method, split_bandwidth, (12, 128));
+    scene.spec.lobes = Lobes {
+        r: false,
+        tt: true,
+        trt: false,
     };
-    let scene = Scene::from_parts(spec, block(), env, lights);
     let (_, prepared, _) = renderer().render(&scene);
     renderer().shade(&scene, &prepared).iter().sum()
 }

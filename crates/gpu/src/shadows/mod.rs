@@ -9,6 +9,10 @@
 //! 5. `transmittance`: T̃ = exp(−density × depth) at each visible point, each layer boxed to the
 //!    light's bandwidth, into the buffer the shading pass reads (no CPU round trip).
 //!
+//! The maps are built in batches as large as the device's buffer limits allow (the layers of
+//! one batch in one buffer, reused by the next): each batch runs steps 1–5 for its own lights,
+//! and step 5 leaves the other batches' lights as they are.
+//!
 //! Each map's frame ([`MapFrame`]) is computed on the CPU in f64, as the reference does. Fiber
 //! counts are summed in fixed point (deterministic, unlike f32 atomics, which WGSL lacks), at
 //! the largest power-of-two scale for which the groom's whole projected area stays below 2^31:
@@ -27,6 +31,8 @@ pub const WORKGROUP: u32 = 64;
 const STRIDE_GROUPS: u32 = 1024;
 /// opacity_maps.wgsl's NO_MAP.
 const NO_MAP: u32 = u32::MAX;
+/// opacity_maps.wgsl's OTHER_BATCH: a light whose map another batch builds.
+const OTHER_BATCH: u32 = u32::MAX - 1;
 
 /// The entry points, in dispatch order.
 pub const STEPS: [&str; 5] = [
@@ -125,8 +131,10 @@ impl ShadowPipelines {
 
 /// One frame's opacity maps on the device, and the shadows they give.
 pub struct ShadowMaps {
+    /// The whole frame's counts: every lit light's map, every light, every visible point.
     pub params: ShadowParams,
-    group: wgpu::BindGroup,
+    /// Each batch's map count and bindings (its uniform among them).
+    batches: Vec<(u32, wgpu::BindGroup)>,
     first: wgpu::Buffer,
     layers: wgpu::Buffer,
     /// T̃ per (visible point, light), as the shading pass binds it.
@@ -143,17 +151,15 @@ pub struct ShadowInputs<'a> {
     /// The visible points' buffer (shading's `PointRecord`s).
     pub points: &'a wgpu::Buffer,
     pub point_count: usize,
+    /// The most maps one batch builds, below what the device's limits allow (`None`: those).
+    pub max_batch: Option<usize>,
 }
 
 impl ShadowMaps {
-    /// Bytes the maps and the shadows take, for the device's buffer limits:
-    /// (the layers, the shadows).
+    /// Bytes the largest buffers take, for the device's buffer limits: (one map's layers, the
+    /// shadows). The maps are built in batches, so one map's layers must fit.
     pub fn sizes(lights: &[WorldLight], resolution: usize, point_count: usize) -> (usize, usize) {
-        let n = resolution;
-        (
-            lit_lights(lights).len() * NL * n * n * 4,
-            point_count * lights.len() * 4,
-        )
+        (map_bytes(resolution), point_count * lights.len() * 4)
     }
 
     /// Allocates the buffers and uploads the maps' frames, reading the groom from
@@ -162,12 +168,9 @@ impl ShadowMaps {
         let groom = inputs.groom;
         let n = inputs.options.resolution;
         let lit = lit_lights(inputs.lights);
-        let mut map_of_light = vec![NO_MAP; inputs.lights.len()];
         let maps: Vec<MapRecord> = lit
             .iter()
-            .enumerate()
-            .map(|(m, &j)| {
-                map_of_light[j] = m as u32;
+            .map(|&j| {
                 let light = &inputs.lights[j];
                 map_record(
                     &MapFrame::new(groom, light.direction, n),
@@ -192,80 +195,131 @@ impl ShadowMaps {
             _pad: 0,
             layers,
         };
-        let storage = |label, bytes: &[u8]| buffers::storage(device, label, bytes, false);
-        let first = buffers::output(device, "first hair", maps.len() * n * n * 4);
-        let layer_buffer = buffers::output(device, "opacity layers", maps.len() * NL * n * n * 4);
+        let per_batch = maps_per_batch(&device.limits(), n)
+            .min(inputs.max_batch.unwrap_or(usize::MAX))
+            .min(maps.len())
+            .max(1);
+        let first = buffers::output(device, "first hair", per_batch * n * n * 4);
+        let layer_buffer = buffers::output(device, "opacity layers", per_batch * map_bytes(n));
         let shadow = buffers::output(
             device,
             "shadows",
             inputs.point_count * inputs.lights.len() * 4,
         );
-        let uniform = buffers::uniform(device, "shadow params", bytemuck::bytes_of(&params));
-        let maps_buffer = storage("map frames", bytemuck::cast_slice(&maps));
-        let map_of_light_buffer = storage("map of light", bytemuck::cast_slice(&map_of_light));
-        let bound = [
-            &uniform,
-            &maps_buffer,
-            &inputs.groom_buffers.points,
-            &inputs.groom_buffers.segments,
-            &first,
-            &layer_buffer,
-            inputs.points,
-            &shadow,
-            &map_of_light_buffer,
-        ];
-        let group = buffers::bind_group(device, &pipelines.layout, "opacity maps", &bound);
+        let chunks: Vec<(usize, &[MapRecord])> = maps
+            .chunks(per_batch)
+            .enumerate()
+            .map(|(b, chunk)| (b * per_batch, chunk))
+            .collect();
+        let chunks = if chunks.is_empty() {
+            vec![(0, &maps[..])]
+        } else {
+            chunks
+        };
+        let batches = chunks
+            .into_iter()
+            .map(|(start, chunk)| {
+                let mut map_of_light = vec![NO_MAP; inputs.lights.len()];
+                for (m, &j) in lit.iter().enumerate() {
+                    map_of_light[j] = match m.checked_sub(start) {
+                        Some(i) if i < chunk.len() => i as u32,
+                        _ => OTHER_BATCH,
+                    };
+                }
+                let batch = ShadowParams {
+                    maps: chunk.len() as u32,
+                    ..params
+                };
+                let storage = |label, bytes: &[u8]| buffers::storage(device, label, bytes, false);
+                let uniform = buffers::uniform(device, "shadow params", bytemuck::bytes_of(&batch));
+                let maps_buffer = storage("map frames", bytemuck::cast_slice(chunk));
+                let map_of_light_buffer =
+                    storage("map of light", bytemuck::cast_slice(&map_of_light));
+                let bound = [
+                    &uniform,
+                    &maps_buffer,
+                    &inputs.groom_buffers.points,
+                    &inputs.groom_buffers.segments,
+                    &first,
+                    &layer_buffer,
+                    inputs.points,
+                    &shadow,
+                    &map_of_light_buffer,
+                ];
+                let group = buffers::bind_group(device, &pipelines.layout, "opacity maps", &bound);
+                (batch.maps, group)
+            })
+            .collect();
         Self {
             params,
-            group,
+            batches,
             first,
             layers: layer_buffer,
             shadow,
         }
     }
 
-    /// Encodes the five steps (after clearing the maps) into `encoder`; `timestamps` times the
-    /// whole stage as one span, where the device has them.
+    /// Encodes the five steps of every batch (each after clearing the maps) into `encoder`;
+    /// `timestamps` times the whole stage as one span, where the device has them.
     pub fn encode(
         &self,
         pipelines: &ShadowPipelines,
         encoder: &mut wgpu::CommandEncoder,
         timestamps: Option<(&wgpu::QuerySet, u32)>,
     ) -> usize {
-        encoder.clear_buffer(&self.first, 0, None);
-        encoder.clear_buffer(&self.layers, 0, None);
         let p = &self.params;
         let along = |count: u32| count.div_ceil(WORKGROUP).clamp(1, STRIDE_GROUPS);
         let lines = p.n.div_ceil(WORKGROUP);
-        let grids = [
-            (along(p.segments), p.maps),
-            (along(p.segments), p.maps),
-            (lines, p.maps * NL as u32),
-            (lines, p.maps * NL as u32),
-            (along(p.points), p.lights),
-        ];
-        let mut dispatched = 0;
         let last = STEPS.len() - 1;
-        for (k, (pipeline, &(x, y))) in pipelines.steps.iter().zip(&grids).enumerate() {
-            if y == 0 || (k < last && (p.segments == 0 || p.points == 0)) {
-                continue;
+        let mut dispatched = 0;
+        for (b, (maps, group)) in self.batches.iter().enumerate() {
+            let maps = *maps;
+            encoder.clear_buffer(&self.first, 0, None);
+            encoder.clear_buffer(&self.layers, 0, None);
+            let grids = [
+                (along(p.segments), maps),
+                (along(p.segments), maps),
+                (lines, maps * NL as u32),
+                (lines, maps * NL as u32),
+                (along(p.points), p.lights),
+            ];
+            let (first_batch, last_batch) = (b == 0, b + 1 == self.batches.len());
+            for (k, (pipeline, &(x, y))) in pipelines.steps.iter().zip(&grids).enumerate() {
+                if y == 0 || (k < last && (p.segments == 0 || p.points == 0)) {
+                    continue;
+                }
+                let (opens, closes) = (first_batch && k == 0, last_batch && k == last);
+                let writes = timestamps.map(|(set, base)| wgpu::ComputePassTimestampWrites {
+                    query_set: set,
+                    beginning_of_pass_write_index: opens.then_some(base),
+                    end_of_pass_write_index: closes.then_some(base + 1),
+                });
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(STEPS[k]),
+                    timestamp_writes: writes.filter(|_| opens || closes),
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, group, &[]);
+                pass.dispatch_workgroups(x, y, 1);
+                dispatched += 1;
             }
-            let writes = timestamps.map(|(set, base)| wgpu::ComputePassTimestampWrites {
-                query_set: set,
-                beginning_of_pass_write_index: (k == 0).then_some(base),
-                end_of_pass_write_index: (k == last).then_some(base + 1),
-            });
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(STEPS[k]),
-                timestamp_writes: writes.filter(|_| k == 0 || k == last),
-            });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &self.group, &[]);
-            pass.dispatch_workgroups(x, y, 1);
-            dispatched += 1;
         }
         dispatched
     }
+}
+
+/// Bytes of one map's layers at `n` texels a side.
+fn map_bytes(n: usize) -> usize {
+    NL * n * n * 4
+}
+
+/// How many maps' layers fit in one buffer under `limits` (at least one: [`ShadowMaps::sizes`]
+/// lets a caller refuse a resolution at which not even one does).
+fn maps_per_batch(limits: &wgpu::Limits, n: usize) -> usize {
+    let limit = limits
+        .max_storage_buffer_binding_size
+        .min(limits.max_buffer_size);
+    (limit / map_bytes(n) as u64).max(1) as usize
 }
 
 /// The lights that add light (the reference builds no map for a black one: T̃ = 1).

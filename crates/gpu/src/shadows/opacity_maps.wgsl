@@ -41,6 +41,8 @@ struct Point {
 
 const NL: u32 = 6u;
 const NO_MAP: u32 = 0xffffffffu;
+// A light whose map another batch builds: its shadows are left as that batch writes them.
+const OTHER_BATCH: u32 = 0xfffffffeu;
 const WORKGROUP: u32 = 64u;
 
 @group(0) @binding(0) var<uniform> params: ShadowParams;
@@ -55,7 +57,8 @@ const WORKGROUP: u32 = 64u;
 @group(0) @binding(6) var<storage, read_write> points: array<Point>;
 // T̃ of light j at visible point k: shadow[k * lights + j].
 @group(0) @binding(7) var<storage, read_write> shadow: array<f32>;
-// The map of each light, or NO_MAP for an unlit one.
+// The map of each light in this batch, NO_MAP for an unlit one, OTHER_BATCH for another
+// batch's.
 @group(0) @binding(8) var<storage, read_write> map_of_light: array<u32>;
 
 fn layer_bound(l: u32) -> f32 {
@@ -250,6 +253,9 @@ fn optical_depth(mi: u32, x: vec3<f32>, lambda: f32) -> f32 {
 fn transmittance(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>) {
     let j = id.y;
     let mi = map_of_light[j];
+    if (mi == OTHER_BATCH) {
+        return;
+    }
     for (var k = id.x; k < params.points; k += groups.x * WORKGROUP) {
         var t = 1.0;
         if (mi != NO_MAP && params.density > 0.0) {
