@@ -11,7 +11,7 @@ use common::{block, renderer};
 use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_light::{EnvMap, SrbfLight, evaluate_lights};
-use cuticle_render::{Lobes, Method, Scene, SceneSpec, ShadowOptions};
+use cuticle_render::{Lobes, Method, Scene, SceneSpec, ShadowOptions, Timings};
 use glam::{DVec3, Vec3};
 
 fn ground() -> Vec<SrbfLight> {
@@ -102,7 +102,7 @@ fn tt_all_round(method: Method, split_bandwidth: f64) -> DVec3 {
         tt: true,
         trt: false,
     };
-    let (_, prepared, _) = renderer().render(&scene);
+    let prepared = renderer().prepare(&scene, &mut Timings::default());
     renderer().shade(&scene, &prepared).iter().sum()
 }
 
