@@ -3,8 +3,8 @@
 //! renderer blends colour along a segment between its points, so with the strands' own points
 //! the light of each last segment is the blend of an exposed tip and a shadowed point, not the
 //! light along it; the reference is the same block with every segment cut into [`FINE`] pieces.
-//! [`shading_points`] (the tips halved where their light bends) brings the bottom within a few
-//! per cent of it, adding points to the last segments only. (In this block the blend makes
+//! [`shading_points`] (the strands' last stretch split where its light bends, for any of the
+//! probe lights) brings the bottom within a few per cent of it. (In this block the blend makes
 //! the bottom too dark; in straight.hair too bright: the sign is the bend's.)
 
 mod common;
@@ -65,7 +65,7 @@ fn light(groom: Groom) -> (DVec3, DVec3) {
 }
 
 #[test]
-fn tips_halved_where_their_light_bends_match_finely_cut_strands() {
+fn tips_split_where_their_light_bends_match_finely_cut_strands() {
     let coarse = split_long_segments(block());
     let points = shading_points(block());
     let added = points.point_count() - coarse.point_count();
@@ -80,11 +80,12 @@ fn tips_halved_where_their_light_bends_match_finely_cut_strands() {
         coarse_all / fine_all,
         all / fine_all
     );
-    // Measured: 0.88 / 0.92 / 0.96 with the strands' points, 0.96 / 0.97 / 0.99 with the
-    // shading points; over all the hair 0.98 and 0.99.
+    // Measured: 0.88 / 0.92 / 0.96 with the strands' points, 1.012 / 1.008 / 1.004 with the
+    // shading points (0.96 / 0.97 / 0.99 when only the last segment was tested, by the mean
+    // of the probes' T); over all the hair 0.98 and 0.998.
     let off = |r: DVec3| (r - DVec3::ONE).abs().max_element();
     assert!(off(r_coarse) > 0.08, "the strands' own points: {r_coarse}");
-    assert!(off(r) < 0.05, "{r}");
-    assert!(off(r) < 0.5 * off(r_coarse), "{r} against {r_coarse}");
+    assert!(off(r) < 0.025, "{r}");
+    assert!(off(r) < 0.25 * off(r_coarse), "{r} against {r_coarse}");
     assert!(off(all / fine_all) < 0.02, "{}", all / fine_all);
 }

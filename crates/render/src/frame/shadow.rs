@@ -163,17 +163,12 @@ impl DirectionalMaps {
         }
     }
 
-    /// The mean over the lights of T̃ at world point `x` (1 with no maps).
-    pub fn mean_transmittance(&self, x: DVec3) -> f64 {
-        if self.maps.is_empty() {
-            return 1.0;
-        }
-        let sum: f64 = self
-            .maps
+    /// Each light's T̃ at world point `x`, in the order of the directions (none with no maps).
+    pub fn transmittances(&self, x: DVec3) -> Vec<f64> {
+        self.maps
             .iter()
             .map(|m| (-self.density * m.depth(x, 0.0)).exp())
-            .sum();
-        sum / self.maps.len() as f64
+            .collect()
     }
 }
 

@@ -4,8 +4,9 @@
 //! [`shading_points`] adds points to a loaded groom, a file a step:
 //! 1. [`long_segments`]: segments longer than [`long_segments::MAX_SEGMENT`] of the bounding
 //!    radius split evenly;
-//! 2. [`tips`]: each strand's last segment halved where the transmittance at a piece's
-//!    midpoint departs from the blend of its ends' (where hair thins the light bends there);
+//! 2. [`tips`]: each strand's last stretch (its segments within [`tips::TIP_ZONE`] of the tip)
+//!    halved where a probe light's transmittance at a piece's midpoint departs from the blend
+//!    of its ends' (where hair thins the light bends there);
 //! 3. [`knots`]: the groom rebuilt with the points chosen (thickness, colour and transparency
 //!    interpolated), the one builder both steps use.
 //!
