@@ -8,9 +8,10 @@
 //! directional lights spread over the sphere (deep opacity maps, as shading reads them, at
 //! [`PROBE_RESOLUTION`]). Each segment within [`TIP_ZONE`] of the tip is tested: a piece is
 //! halved where, for any probe, T at its midpoint departs from the mean of its ends' T by more
-//! than [`BEND_TOLERANCE`], and its halves are tested in turn, down to a texel of the shading's
-//! maps. A stretch whose light is linear keeps its points, whatever its length. The probes
-//! depend on the groom alone, so a groom always gets the same points, whatever its lights.
+//! than [`BEND_TOLERANCE`], and its halves are tested in turn, down to a texel of the probes'
+//! maps (finer, a probe sees the bilinear blend of its own texels, not the light). A stretch
+//! whose light is linear keeps its points, whatever its length. The probes depend on the
+//! groom alone, so a groom always gets the same points, whatever its lights.
 //!
 //! Why per probe and only near the tips: the mean T̄ over the probes hides a bend that one
 //! direction sees, and testing whole strands adds points all along them for little change in
@@ -41,8 +42,7 @@ pub fn split_tips(groom: Groom) -> Groom {
     }
     let b = groom.bounds();
     let diagonal = (b.max - b.min).length();
-    // The finest piece worth cutting: a texel of the maps shading reads, at their default size.
-    let texel = f64::from(diagonal) / ShadowOptions::default().resolution as f64;
+    let texel = f64::from(diagonal) / PROBE_RESOLUTION as f64;
     let zone = TIP_ZONE * 0.5 * diagonal;
     if !texel.is_finite() || texel <= 0.0 {
         return groom;
@@ -67,7 +67,7 @@ pub fn split_tips(groom: Groom) -> Groom {
 /// The two lengths the test works to, in the groom's units.
 #[derive(Clone, Copy)]
 struct Lengths {
-    /// The finest piece worth cutting.
+    /// A texel of the probes' maps: the finest piece worth cutting (module doc).
     texel: f64,
     /// How far up from the tip segments are tested.
     zone: f32,
@@ -106,7 +106,7 @@ fn strand_knots(groom: &Groom, s: usize, maps: &DirectionalMaps, lengths: Length
             t_to: at(u1),
         }];
         while let Some(piece) = open.pop() {
-            if (piece.to - piece.from) * f64::from(length) <= lengths.texel {
+            if (piece.to - piece.from) * f64::from(length) < lengths.texel {
                 continue;
             }
             let mid = 0.5 * (piece.from + piece.to);
