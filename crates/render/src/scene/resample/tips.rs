@@ -86,24 +86,29 @@ struct Piece {
 fn strand_knots(groom: &Groom, s: usize, maps: &DirectionalMaps, lengths: Lengths) -> Vec<f64> {
     let pos = &groom.positions()[groom.strand_range(s)];
     let mut knots: Vec<f64> = (0..pos.len()).map(|i| i as f64).collect();
+    if pos.len() < 2 {
+        return knots;
+    }
     let at = |u: f64| {
         let (i, t) = segment_at(u, pos.len());
         maps.transmittances(pos[i].lerp(pos[i + 1], t).as_dvec3())
     };
-    // Segments from the tip up, while they begin within the zone.
+    // Segments from the tip up, while they begin within the zone; each segment's far end is
+    // the start of the one after it, whose T is carried over.
     let mut from_tip = 0.0;
+    let mut t_end = at((pos.len() - 1) as f64);
     for seg in (0..pos.len().saturating_sub(1)).rev() {
         if from_tip >= lengths.zone {
             break;
         }
         let length = pos[seg].distance(pos[seg + 1]);
         from_tip += length;
-        let (u0, u1) = (seg as f64, seg as f64 + 1.0);
+        let t_start = at(seg as f64);
         let mut open = vec![Piece {
-            from: u0,
-            to: u1,
-            t_from: at(u0),
-            t_to: at(u1),
+            from: seg as f64,
+            to: seg as f64 + 1.0,
+            t_from: t_start.clone(),
+            t_to: std::mem::replace(&mut t_end, t_start),
         }];
         while let Some(piece) = open.pop() {
             if (piece.to - piece.from) * f64::from(length) < lengths.texel {
