@@ -8,8 +8,9 @@
 //!
 //! `cargo bench -p cuticle-fiber --bench models` runs everything; criterion's filter (a regex)
 //! runs a part, e.g. only the table's four models:
-//! `cargo bench -p cuticle-fiber --bench models -- '^(deon2011_table|chiang2016_h0.3|nonseparable_table|marschner2003)/'`
-//! (the far-field Chiang 2016, direct d'Eon 2011 and the table build come after them).
+//! `cargo bench -p cuticle-fiber --bench models -- '^(deon2011_table|chiang2016_h0.3|nonseparable_table|marschner2003_table)/'`
+//! (exact Marschner 2003, the far-field Chiang 2016, direct d'Eon 2011 and the table build
+//! come after them).
 
 #[path = "common/inputs.rs"]
 mod inputs;
@@ -46,7 +47,11 @@ const ROWS: [(&str, &str, [f64; 3]); 4] = [
         "non-separable (tabulated N_p)",
         [300.0, 1000.0, 300.0],
     ),
-    ("marschner2003", "Marschner 2003", [150.0, 400.0, 150.0]),
+    (
+        "marschner2003_table",
+        "Marschner 2003 (tabulated N_p)",
+        [150.0, 400.0, 150.0],
+    ),
 ];
 
 /// The three calls of one model, as closures over (ω_i, ω_o, u).
@@ -109,7 +114,9 @@ fn models(c: &mut Criterion) {
     let nonsep = NonSeparable::new(p).unwrap().tabulated();
     bench_calls(c, ROWS[2].0, &far_field(&nonsep));
     let marschner = Marschner2003::from_fiber(&p).unwrap();
-    bench_calls(c, ROWS[3].0, &far_field(&marschner));
+    let marschner_table = marschner.clone().tabulated();
+    bench_calls(c, ROWS[3].0, &far_field(&marschner_table));
+    bench_calls(c, "marschner2003_exact", &far_field(&marschner));
     bench_calls(c, "chiang2016_far", &far_field(&chiang));
     bench_calls(c, "deon2011_direct", &far_field(&DEon2011::new(p).unwrap()));
 }

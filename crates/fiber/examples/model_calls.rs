@@ -70,9 +70,16 @@ fn main() {
         "deon2011" => (Box::new(DEon2011::new(p).unwrap().tabulated()), None),
         "chiang2016" => (Box::new(Chiang2016::new(p, p.beta).unwrap()), Some(0.3)),
         "nonseparable" => (Box::new(NonSeparable::new(p).unwrap().tabulated()), None),
-        "marschner2003" => (Box::new(Marschner2003::from_fiber(&p).unwrap()), None),
+        "marschner2003" => (
+            Box::new(Marschner2003::from_fiber(&p).unwrap().tabulated()),
+            None,
+        ),
+        "marschner2003_exact" => (Box::new(Marschner2003::from_fiber(&p).unwrap()), None),
         other => {
-            eprintln!("unknown model {other}: deon2011, chiang2016, nonseparable, marschner2003");
+            eprintln!(
+                "unknown model {other}: deon2011, chiang2016, nonseparable, marschner2003, \
+                 marschner2003_exact"
+            );
             std::process::exit(2);
         }
     };

@@ -55,7 +55,7 @@ pub trait FiberModel: Send + Sync {
 
 /// Converts a density in (θ, φ) to a density per steradian.
 pub fn per_steradian(pdf_theta_phi: f64, theta_o: f64) -> f64 {
-    pdf_theta_phi / theta_o.cos().max(1e-300)
+    pdf_theta_phi / crate::special::cos_quadrant(theta_o).max(1e-300)
 }
 
 /// Remaps a uniform number that selected slot `k` of a discrete distribution back to [0, 1),

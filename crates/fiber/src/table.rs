@@ -360,7 +360,7 @@ fn theta_i_coord(theta_i: f64) -> f64 {
 
 /// The lower node and the fraction toward the next for a coordinate t ∈ [0, 1] on n nodes.
 #[inline]
-fn locate(t: f64, n: usize) -> (usize, f32) {
+pub(crate) fn locate(t: f64, n: usize) -> (usize, f32) {
     // t ≥ 0 (every coordinate is), so truncation is the floor. The clamp to the last cell
     // happens in f64 before the cast (NaN goes to the last cell, f64::min keeping the
     // number), and the cast's saturation sends any negative to node 0.

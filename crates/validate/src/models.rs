@@ -35,8 +35,7 @@ impl ModelKind {
         }
     }
 
-    /// The model for `params`; d'Eon 2011 and the non-separable model on their tabulated
-    /// azimuthal fast path.
+    /// The model for `params`, each on its tabulated azimuthal fast path.
     pub fn build(self, params: &FiberParams) -> Result<Box<dyn FiberModel>, ValidateError> {
         let err = |message: String| ValidateError::Model {
             model: self.name(),
@@ -58,9 +57,11 @@ impl ModelKind {
                     .map_err(|e| err(e.to_string()))?
                     .tabulated(),
             ),
-            ModelKind::Marschner => {
-                Box::new(Marschner2003::from_fiber(params).map_err(|e| err(e.to_string()))?)
-            }
+            ModelKind::Marschner => Box::new(
+                Marschner2003::from_fiber(params)
+                    .map_err(|e| err(e.to_string()))?
+                    .tabulated(),
+            ),
         })
     }
 

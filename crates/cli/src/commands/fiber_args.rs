@@ -87,8 +87,9 @@ pub struct FiberArgs {
     /// Fixed-point iterations per sample of the non-separable model (d'Eon et al. 2014 uses 6).
     #[arg(long, default_value_t = cuticle_fiber::nonseparable::DEFAULT_ITERATIONS)]
     pub iterations: u32,
-    /// Integrate N_p over h at every evaluation instead of reading the table built once per
-    /// parameter set (slower; the reference the table is measured against).
+    /// Integrate N_p over h (Marschner 2003: solve its cubics for their roots) at every
+    /// evaluation instead of reading the table built once per parameter set (slower; the
+    /// reference the table is measured against).
     #[arg(long)]
     pub direct: bool,
 }
@@ -139,7 +140,13 @@ impl FiberArgs {
                 })
             }
             ModelName::Marschner => {
-                Box::new(Marschner2003::from_fiber(&params).context("Marschner 2003 parameters")?)
+                let model =
+                    Marschner2003::from_fiber(&params).context("Marschner 2003 parameters")?;
+                Box::new(if self.direct {
+                    model
+                } else {
+                    model.tabulated()
+                })
             }
         })
     }

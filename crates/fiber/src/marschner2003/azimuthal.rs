@@ -71,24 +71,6 @@ pub(super) fn azimuthal(p: u32, interface: &Interface, phi: f64) -> DVec3 {
         .sum()
 }
 
-/// N_p(φ) and Σ 1/|2 dΦ̂/dh| over the same roots (the density with which R and TT sample φ):
-/// [`azimuthal`] and the sampler's density from one root search, with their arithmetic.
-pub(super) fn azimuthal_and_density(p: u32, interface: &Interface, phi: f64) -> (DVec3, f64) {
-    let deflection = interface.deflection(p);
-    let roots = deflection.roots(phi);
-    let n = roots
-        .as_slice()
-        .iter()
-        .map(|&g| interface.attenuation(p, g) * deflection.inverse_spread(g))
-        .sum();
-    let density = roots
-        .as_slice()
-        .iter()
-        .map(|&g| deflection.inverse_spread(g))
-        .sum();
-    (n, density)
-}
-
 /// Marschner 2003's treatment of the TRT caustics (its listing for N_TRT), taken at the
 /// cubic's own fold so that the singularity removed is the one N_P has.
 #[derive(Clone, Copy, Debug, PartialEq)]

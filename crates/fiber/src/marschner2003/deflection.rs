@@ -5,6 +5,15 @@ use crate::cubic::Cubic;
 use crate::special::{asin_fast, cos_quadrant};
 use std::f64::consts::{FRAC_PI_2, PI};
 
+/// A Newton step this small is the last: Newton converges quadratically, so the next would
+/// move γ by about this squared times Φ̂''/2Φ̂', under f64's resolution
+/// (`falling_root_density_matches_the_root_search` checks it down to η′ = 1.16, where Φ̂'
+/// nearly vanishes at γ = 0).
+const NEWTON_LAST_STEP: f64 = 1e-8;
+/// Newton steps (with bisection where one leaves the bracket) before [`CubicDeflection::falling_root`]
+/// settles for its last iterate: bisection alone reaches 1e-15 of π within 52.
+const MAX_NEWTON_STEPS: usize = 64;
+
 /// Φ̂(p, γ) = (6pc/π − 2)γ − (8pc/π³)γ³ + pπ with c = asin(1/η′) (Marschner 2003's cubic
 /// approximation, Marschner et al. 2003 "Finding γ_i"):
 /// the exact Φ = 2pγ_t − 2γ + pπ with γ_t replaced by the cubic through γ_t(0) = 0,
@@ -102,8 +111,69 @@ impl CubicDeflection {
         out
     }
 
+    /// Σ 1/|2 dΦ̂/dh| over every root of Φ̂(p, γ) ≡ φ: the density in φ of Φ̂(p, asin h)
+    /// with h uniform on [−1, 1]. A deflection that falls over all of [−π/2, π/2] (R always,
+    /// TT for η′ > 2/√3 and TRT for η′ > 2, where pc < π/3) has at most one root, found by
+    /// [`Self::falling_root`]; any other by [`Self::roots`].
+    pub fn offset_density(&self, phi: f64) -> f64 {
+        if self.falls() {
+            return self
+                .falling_root(phi)
+                .map_or(0.0, |g| self.inverse_spread(g));
+        }
+        self.roots(phi)
+            .as_slice()
+            .iter()
+            .map(|&g| self.inverse_spread(g))
+            .sum()
+    }
+
+    /// Whether Φ̂ falls over all of [−π/2, π/2]: dΦ̂/dγ = a − 3bγ² < 0 there.
+    pub(super) fn falls(&self) -> bool {
+        self.a < 0.0 && self.b >= 0.0
+    }
+
+    /// For a deflection that [`Self::falls`], its one γ with Φ̂(p, γ) ≡ φ, if any: Φ̂ spans
+    /// [Φ̂(π/2), Φ̂(−π/2)], less than 2π wide, so at most one branch φ + 2πk meets it (two
+    /// only at its ends, where cos γ = 0 and the root adds nothing to a density). Newton's
+    /// method from the secant's guess, safeguarded by the bracket (Press et al. 2007 `rtsafe`).
+    pub(super) fn falling_root(&self, phi: f64) -> Option<f64> {
+        let centre = self.p as f64 * PI;
+        // The nearest branch to the centre: centre − φ ≥ −π, so the truncation is a floor
+        // (x86-64's baseline has no rounding instruction).
+        let k = ((centre - phi) / (2.0 * PI) + 0.5) as i64;
+        let target = phi + 2.0 * PI * k as f64;
+        let y = target - centre;
+        let edge = self.phi(FRAC_PI_2) - centre;
+        if y.abs() > edge.abs() {
+            return None;
+        }
+        let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
+        let mut g = (FRAC_PI_2 * y / edge).clamp(lo, hi);
+        for _ in 0..MAX_NEWTON_STEPS {
+            let f = (self.a - self.b * g * g) * g - y;
+            // Φ̂ falls: f > 0 means the root lies above g.
+            if f > 0.0 {
+                lo = g;
+            } else {
+                hi = g;
+            }
+            let step = f / self.slope(g);
+            if step.abs() <= NEWTON_LAST_STEP {
+                return Some(g - step);
+            }
+            let next = g - step;
+            g = if next > lo && next < hi {
+                next
+            } else {
+                0.5 * (lo + hi)
+            };
+        }
+        Some(g)
+    }
+
     /// 1/|2 dΦ̂/dh| = cos γ / (2 |dΦ̂/dγ|), the density in φ of the offsets near γ.
-    pub(super) fn inverse_spread(&self, gamma: f64) -> f64 {
+    pub fn inverse_spread(&self, gamma: f64) -> f64 {
         cos_quadrant(gamma).max(0.0) / (2.0 * self.slope(gamma).abs().max(MIN_SLOPE))
     }
 }

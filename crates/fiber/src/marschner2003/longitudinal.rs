@@ -16,12 +16,6 @@ impl GaussianLobe {
         normal_pdf_fast((theta_h - self.alpha) / self.beta) / self.beta
     }
 
-    /// The density in θ_o of θ_o = 2θ_h − θ_i with θ_h drawn from M_p: M_p / 2. It is not
-    /// renormalised to θ_o ∈ [−π/2, π/2]; draws beyond are rejected instead.
-    pub(super) fn density(&self, theta_i: f64, theta_o: f64) -> f64 {
-        0.5 * self.eval(0.5 * (theta_i + theta_o))
-    }
-
     /// θ_o = 2θ_h − θ_i with θ_h from M_p by inversion, or `None` beyond ±π/2.
     pub(super) fn sample(&self, theta_i: f64, u: f64) -> Option<f64> {
         let theta_h = self.alpha + self.beta * normal_quantile_fast(u);

@@ -55,18 +55,25 @@
 //! A lobe is chosen by an estimate of its energy at θ_i, θ_h from its Gaussian by inversion
 //! (a draw whose θ_o = 2θ_h − θ_i falls beyond ±π/2 returns `None`, and `pdf` integrates to
 //! the probability of the others, so nothing needs the Gaussian's truncated mass), then φ
-//! given θ_d: for R and TT
-//! exactly as the cubic maps a uniformly distributed offset h, φ = Φ̂(p, asin h), whose density
-//! Σ 1/|2 dΦ̂/dh| over the same roots is N_p with A = 1; for TRT a mixture of the two glint
-//! Gaussians, a wrapped Gaussian over Φ̂(2, ·)'s range and a uniform share. Every density is
-//! closed-form, so [`crate::FiberModel::pdf`] is exactly the density of [`crate::FiberModel::sample`], and
-//! weights are S / pdf (`crate::deon2011::weighted_sample`).
+//! given θ_d: for R and TT as the cubic maps a uniformly distributed offset h,
+//! φ = Φ̂(p, asin h), whose density Σ 1/|2 dΦ̂/dh| over the same roots is N_p with A = 1; for
+//! TRT a mixture of the two glint Gaussians, a wrapped Gaussian over Φ̂(2, ·)'s range and a
+//! uniform share. The lobe probabilities, TT's c and TRT's mixture are tabulated once per
+//! model and read the same way by `sample` and `pdf` (`sampling.rs`). Every density is
+//! closed-form, so [`crate::FiberModel::pdf`] is exactly the density of
+//! [`crate::FiberModel::sample`], and weights are S / pdf (`crate::deon2011::weighted_sample`).
+//!
+//! # The tabulated fast path
+//! [`Marschner2003::tabulated`] reads N_TT and N_TRT from an [`NpTable`] over (θ_d, φ) and
+//! takes N_R in closed form; the exact model, which solves the cubics at every evaluation,
+//! stays the reference it is measured against (`table.rs`).
 //!
 //! # Files
 //! - `params.rs`: [`MarschnerParams`], Table 1's defaults and their range checks.
 //! - `longitudinal.rs`: the Gaussian lobes M_p in θ_h.
 //! - `deflection.rs`: the cubic deflection Φ̂ ([`CubicDeflection`]) and its roots ([`GammaRoots`]).
 //! - `azimuthal.rs`: attenuation A(p, h), N_p, the TRT caustic glints ([`Caustic`]) and [`eta_star`].
+//! - `table.rs`: [`NpTable`], N_TT and N_TRT over (θ_d, φ) for [`Marschner2003::tabulated`].
 //! - `sampling.rs`: lobe choice, θ_o and φ sampling, and the [`crate::FiberModel`] implementation.
 //! - `tests.rs`: energy, root, reciprocity, χ² and finiteness tests.
 
@@ -75,25 +82,28 @@ mod deflection;
 mod longitudinal;
 mod params;
 mod sampling;
+mod table;
 #[cfg(test)]
 mod tests;
 
 use crate::frame::{FiberAngles, wrap_pi};
+use crate::fresnel::fresnel_oblique_at;
 use crate::params::FiberParams;
-use crate::special::cos_quadrant;
+use crate::special::{cos_quadrant, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::SQRT_2;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 pub use azimuthal::{Caustic, eta_star};
-use azimuthal::{Interface, azimuthal, azimuthal_and_density, azimuthal_trt};
+use azimuthal::{Interface, azimuthal, azimuthal_trt};
 pub use deflection::{CubicDeflection, GammaRoots};
 use longitudinal::GaussianLobe;
 pub use params::{
     DEFAULT_ALPHA_R_DEG, DEFAULT_BETA_R_DEG, DEFAULT_CAUSTIC_WIDTH_DEG, MarschnerError,
     MarschnerParams,
 };
-use sampling::EnergyTable;
+use sampling::SamplingTables;
+pub use table::NpTable;
 
 /// The Marschner et al. 2003 fiber model.
 #[derive(Clone, Debug)]
@@ -101,8 +111,10 @@ pub struct Marschner2003 {
     params: MarschnerParams,
     /// M_R, M_TT, M_TRT.
     lobes: [GaussianLobe; 3],
-    /// Each lobe's energy estimate over θ_i, for lobe choice; built on first use.
-    energy: OnceLock<EnergyTable>,
+    /// Lobe choice over θ_i and TRT's azimuthal proposal over θ_d; built on first use.
+    sampling: OnceLock<SamplingTables>,
+    /// N_TT and N_TRT over (θ_d, φ), when the model is [`Marschner2003::tabulated`].
+    table: Option<Arc<NpTable>>,
 }
 
 impl Marschner2003 {
@@ -114,8 +126,25 @@ impl Marschner2003 {
         Ok(Self {
             params,
             lobes,
-            energy: OnceLock::new(),
+            sampling: OnceLock::new(),
+            table: None,
         })
+    }
+
+    /// The same model with N_TT and N_TRT read from an [`NpTable`] built once for these
+    /// parameters, and N_R in closed form: the fast path (see the table for its resolution
+    /// and measured error). A fiber whose glints the table cannot resolve
+    /// ([`NpTable::fits`]) stays exact.
+    pub fn tabulated(mut self) -> Self {
+        if NpTable::fits(&self.params) {
+            self.table = Some(Arc::new(NpTable::build(&self.params)));
+        }
+        self
+    }
+
+    /// The table, when the model has one.
+    pub fn table(&self) -> Option<&NpTable> {
+        self.table.as_deref()
     }
 
     /// The model for the physical parameters every model shares: η and μ_a as given, an R
@@ -138,26 +167,72 @@ impl Marschner2003 {
         &self.params
     }
 
-    /// S of R, TT and TRT (docs/conventions.md §3 units, see the module documentation).
-    fn lobe_values(&self, wi: FiberAngles, wo: FiberAngles) -> [DVec3; 3] {
+    /// M_R, M_TT and M_TRT at θ_h (written out: `array::map`'s closure stays a call per lobe).
+    fn longitudinal(&self, wi: FiberAngles, wo: FiberAngles) -> [f64; 3] {
         let theta_h = 0.5 * (wi.theta + wo.theta);
+        let [l0, l1, l2] = &self.lobes;
+        [l0.eval(theta_h), l1.eval(theta_h), l2.eval(theta_h)]
+    }
+
+    /// S of R, TT and TRT (docs/conventions.md §3 units, see the module documentation) given
+    /// M_p(θ_h) ([`Self::longitudinal`]).
+    fn lobe_values_with(&self, wi: FiberAngles, wo: FiberAngles, m: &[f64; 3]) -> [DVec3; 3] {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
         let scale = per_steradian_factor(wo.theta, theta_d);
-        let m = self.lobes.map(|lobe| lobe.eval(theta_h) * scale);
+        let m = [m[0] * scale, m[1] * scale, m[2] * scale];
+        let n = match self.table.as_deref() {
+            Some(table) => self.azimuthal_tabulated(table, wi, wo, theta_d, phi),
+            None => self.azimuthal_exact(wi, wo, theta_d, phi, &m),
+        };
+        let lobe = |p: usize| if m[p] > 0.0 { m[p] * n[p] } else { DVec3::ZERO };
+        [lobe(0), lobe(1), lobe(2)]
+    }
+
+    /// N_R, N_TT and N_TRT by their roots (the reference), each only where its M_p is not 0.
+    fn azimuthal_exact(
+        &self,
+        wi: FiberAngles,
+        wo: FiberAngles,
+        theta_d: f64,
+        phi: f64,
+        m: &[f64; 3],
+    ) -> [DVec3; 3] {
         let p = &self.params;
         let circular = Interface::new(p.eta, theta_d, p.mu_a);
         let mut out = [DVec3::ZERO; 3];
         if m[0] > 0.0 {
-            out[0] = m[0] * azimuthal(0, &circular, phi);
+            out[0] = azimuthal(0, &circular, phi);
         }
         if m[1] > 0.0 {
-            out[1] = m[1] * azimuthal(1, &circular, phi);
+            out[1] = azimuthal(1, &circular, phi);
         }
         if m[2] > 0.0 {
-            out[2] = m[2] * self.trt(wi, wo, &circular, phi);
+            out[2] = self.trt(wi, wo, &circular, phi);
         }
         out
+    }
+
+    /// N_R in closed form, N_TT and N_TRT from the table where it reaches (exactly beyond),
+    /// an elliptical fiber's N_TRT exactly.
+    fn azimuthal_tabulated(
+        &self,
+        table: &NpTable,
+        wi: FiberAngles,
+        wo: FiberAngles,
+        theta_d: f64,
+        phi: f64,
+    ) -> [DVec3; 3] {
+        let p = &self.params;
+        let Some([tt, trt]) = table.lookup(theta_d, phi) else {
+            return self.azimuthal_exact(wi, wo, theta_d, phi, &[1.0; 3]);
+        };
+        let r = DVec3::splat(n_r(p.eta, theta_d, phi));
+        if p.eccentricity == 1.0 {
+            return [r, tt, trt];
+        }
+        let circular = Interface::new(p.eta, theta_d, p.mu_a);
+        [r, tt, self.trt(wi, wo, &circular, phi)]
     }
 
     /// N_TRT at η*(φ_h) (the circle's interface unless the fiber is elliptical).
@@ -172,6 +247,20 @@ impl Marschner2003 {
         };
         azimuthal_trt(&interface, p, phi)
     }
+}
+
+/// N_R(φ) = F(η′, η″, γ) cos γ / 4 at its one root γ = −φ/2 of Φ̂(0, γ) = −2γ ≡ φ
+/// (Marschner et al. 2003 "Finding N_p" with p = 0, where |dΦ̂/dh| = 2 / cos γ): what
+/// [`azimuthal`] finds for R by its root search. The Bravais indices from sin θ_d and
+/// cos θ_d with one square root.
+fn n_r(eta: f64, theta_d: f64, phi: f64) -> f64 {
+    let (sin_d, cos_d) = sin_cos_quadrant(theta_d);
+    let cos_d = cos_d.abs();
+    let root = (eta * eta - sin_d * sin_d).max(1e-300).sqrt();
+    let eta_prime = root / cos_d.max(1e-12);
+    let eta_double_prime = eta * eta * cos_d / root;
+    let (sin_g, cos_g) = sin_cos_quadrant(0.5 * phi.abs());
+    0.25 * cos_g * fresnel_oblique_at(eta_prime, eta_double_prime, sin_g, cos_g)
 }
 
 /// ½ cos θ_o / cos²θ_d: Marschner's 1/cos²θ_d, his M taken as a density in θ_o (½) and his

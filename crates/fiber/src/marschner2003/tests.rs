@@ -180,6 +180,133 @@ fn every_root_is_found() {
     assert!(checked > 7_000);
 }
 
+/// The density by the general root search, as [`CubicDeflection::offset_density`] had it.
+fn density_by_roots(d: &CubicDeflection, phi: f64) -> f64 {
+    d.roots(phi)
+        .as_slice()
+        .iter()
+        .map(|&g| d.inverse_spread(g))
+        .sum()
+}
+
+#[test]
+fn falling_root_density_matches_the_root_search() {
+    // R at every η′, TT above η′ = 2/√3 (where Φ̂ falls), TT below and TRT through roots.
+    let mut fast = 0;
+    for &eta_prime in &[1.05, 1.16, 1.2, 1.55, 1.8, 2.0, 3.0, 10.0, 1e6] {
+        for p in 0..3u32 {
+            let d = CubicDeflection::new(p, eta_prime);
+            fast += usize::from(d.falls());
+            for k in 0..=2000 {
+                let phi = wrap_pi(-PI + (k as f64 + 0.29) * PI / 1000.0);
+                let (got, want) = (d.offset_density(phi), density_by_roots(&d, phi));
+                assert!(
+                    (got - want).abs() <= 1e-12 * want.max(1e-3),
+                    "p {p} η′ {eta_prime} φ {phi}: {got} vs {want}"
+                );
+            }
+        }
+    }
+    // R at all nine η′, TT at the eight above 2/√3 and TRT at the three above 2 take the
+    // fast path.
+    assert_eq!(fast, 20);
+}
+
+#[test]
+fn n_r_in_closed_form_is_the_root_search() {
+    let mu_a = DVec3::new(0.2, 0.3, 0.5);
+    for &eta in &[1.2, 1.55, 2.4] {
+        for i in 0..=60 {
+            let theta_d = -1.5 + 3.0 * i as f64 / 60.0;
+            let interface = Interface::new(eta, theta_d, mu_a);
+            for k in 0..=200 {
+                let phi = wrap_pi(-PI + (k as f64 + 0.13) * PI / 100.0);
+                let (got, want) = (n_r(eta, theta_d, phi), azimuthal(0, &interface, phi).x);
+                assert!(
+                    (got - want).abs() <= 1e-13 * want.max(1e-3),
+                    "η {eta} θ_d {theta_d} φ {phi}: {got} vs {want}"
+                );
+            }
+        }
+    }
+}
+
+/// Relative L1 of the tabulated model's S (each lobe, channel sums) against the exact one
+/// over random direction pairs.
+fn tabulated_error(params: MarschnerParams, pairs: usize) -> [f64; 3] {
+    let exact = model(params);
+    let fast = model(params).tabulated();
+    assert!(fast.table().is_some());
+    let mut rng = <rand_pcg::Pcg64Mcg as rand_core::SeedableRng>::seed_from_u64(3);
+    let (mut diff, mut total) = ([0.0; 3], [0.0; 3]);
+    for _ in 0..pairs {
+        let u = crate::testing::uniform4(&mut rng);
+        let wi = FiberAngles::new((2.0 * u[0] - 1.0).asin(), PI * (2.0 * u[1] - 1.0));
+        let wo = FiberAngles::new((2.0 * u[2] - 1.0).asin(), PI * (2.0 * u[3] - 1.0));
+        let (a, b) = (fast.eval(wi, wo), exact.eval(wi, wo));
+        for p in 0..3 {
+            diff[p] += (a.0[p] - b.0[p]).abs().element_sum();
+            total[p] += b.0[p].element_sum();
+        }
+    }
+    std::array::from_fn(|p| diff[p] / total[p])
+}
+
+#[test]
+fn tabulated_model_follows_the_exact_one() {
+    // The table's own bounds (table.rs) carried to S over uniformly random pairs, circular
+    // and elliptical (TRT exact off the table); R is exact to rounding in closed form.
+    for params in [
+        MarschnerParams::default(),
+        MarschnerParams {
+            eta: 1.8,
+            mu_a: DVec3::new(0.05, 0.6, 3.0),
+            caustic_width: 12f64.to_radians(),
+            eccentricity: 0.9,
+            ..Default::default()
+        },
+    ] {
+        let [r, tt, trt] = tabulated_error(params, 200_000);
+        eprintln!("tabulated S, relative L1: R {r:.2e} TT {tt:.2e} TRT {trt:.2e}");
+        assert!(r < 1e-12 && tt < 2e-3 && trt < 3e-3, "{r} {tt} {trt}");
+    }
+}
+
+#[test]
+fn tabulated_model_is_reciprocal_and_samples_its_own_eval() {
+    let m = model(MarschnerParams::default()).tabulated();
+    for k in 0..300 {
+        let x = k as f64;
+        let a = FiberAngles::new(1.2 * (0.7 * x).sin(), wrap_pi(0.37 * x));
+        let b = FiberAngles::new(1.3 * (1.3 * x).cos(), wrap_pi(1.11 * x + 0.5));
+        let ab = m.eval(a, b).total() / b.theta.cos();
+        let ba = m.eval(b, a).total() / a.theta.cos();
+        assert!((ab - ba).abs().max_element() <= 1e-9 * ab.max_element().max(1e-300));
+    }
+    let wi = FiberAngles::new(0.45, -0.3);
+    check_weights(&m, wi, 20_000, 8, 0.0).unwrap();
+    chi2_test(&m, wi, 1 << 19, 41, (32, 64), 1).unwrap();
+}
+
+#[test]
+fn lobe_choice_and_trt_proposal_read_their_nodes() {
+    // Between nodes the proposals interpolate; at a node they are what they tabulate.
+    let params = MarschnerParams::default();
+    let m = model(params);
+    for k in [0, 1, 77, 128, 255, 256] {
+        let theta_i = -FRAC_PI_2 + PI * k as f64 / 256.0;
+        let want = sampling::lobe_weights(&params, &m.lobes, theta_i);
+        let got = m.lobe_probabilities(theta_i);
+        for p in 0..3 {
+            assert!(
+                (got[p] - want[p]).abs() < 1e-14,
+                "θ_i {theta_i}: {got:?} {want:?}"
+            );
+        }
+        assert!((got.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+    }
+}
+
 /// ∫ N dφ over the circle, from the back (φ = −π) round to the back; fine panels, since
 /// N has kinks where a polarisation turns totally reflecting (η″ < 1 at large θ_d).
 fn integral_over_phi(n: impl Fn(f64) -> DVec3) -> DVec3 {
@@ -514,6 +641,36 @@ fn from_fiber_maps_the_shared_parameters() {
         Marschner2003::from_fiber(&bad),
         Err(e) if e.name == "eta"
     ));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    #[test]
+    fn tabulated_finite_and_non_negative_everywhere(
+        theta_i in -FRAC_PI_2..=FRAC_PI_2,
+        theta_o in -FRAC_PI_2..=FRAC_PI_2,
+        phi in -PI..=PI,
+        eta in 1.01f64..=3.0,
+        mu_a in 0.0f64..=100.0,
+        caustic_deg in 0.3f64..=60.0,
+        u in prop::array::uniform4(0.0f64..1.0),
+    ) {
+        let m = model(MarschnerParams {
+            eta,
+            mu_a: DVec3::new(mu_a, 0.5 * mu_a, 0.0),
+            caustic_width: caustic_deg.to_radians(),
+            ..Default::default()
+        })
+        .tabulated();
+        prop_assert!(m.table().is_some());
+        let (wi, wo) = (FiberAngles::new(theta_i, 0.0), FiberAngles::new(theta_o, phi));
+        for v in m.eval(wi, wo).0 {
+            prop_assert!(v.is_finite() && v.min_element() >= 0.0, "eval {v}");
+        }
+        if let Some(s) = m.sample(wi, u) {
+            prop_assert!(s.weight.is_finite() && s.weight.min_element() >= 0.0, "weight {}", s.weight);
+        }
+    }
 }
 
 proptest! {
