@@ -239,10 +239,12 @@ impl NonSeparable {
         let phi = wrap_pi(wo.phi - wi.phi);
         let mirrors = self.mirrors(wi.theta, phi);
         let (sin_o, cos_o) = sin_cos_quadrant(wo.theta);
-        let m = std::array::from_fn(|p| {
+        // Written out: `array::from_fn`'s closure can stay a call per lobe.
+        let m_p = |p| {
             self.longitudinal_at(p, wi.theta, phi, &mirrors)
                 .eval_sin_cos(sin_o, cos_o)
-        });
+        };
+        let m = [m_p(0), m_p(1), m_p(2), m_p(3)];
         Pair {
             theta_d,
             phi,
