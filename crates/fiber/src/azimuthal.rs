@@ -214,14 +214,7 @@ impl AzimuthalScattering {
 
     /// The p ≥ 4 remainder, spread uniformly in φ: (½ ∫ A_rest dh) / 2π.
     fn eval_rest(&self, theta_i: f64, weighting: Weighting) -> DVec3 {
-        let rule = GaussLegendre::cached(64);
-        let mut sum = DVec3::ZERO;
-        for (x, w) in rule.nodes.iter().zip(&rule.weights) {
-            let gamma = 0.5 * PI * x;
-            let a = self.attenuation(theta_i, gamma.sin());
-            sum += *w * gamma.cos() * weight(&a, 4, weighting);
-        }
-        sum * (0.5 * PI * 0.5) / (2.0 * PI)
+        rest_integral(|h| weight(&self.attenuation(theta_i, h), 4, weighting))
     }
 
     fn eval_blurred(
@@ -279,6 +272,17 @@ fn deflection_slope_bound(p: usize, eta_p: f64) -> f64 {
 
 /// The selection probabilities of the five lobes from their attenuations; none at an offset
 /// that sends nothing anywhere (tilted scales can lose all of it), whose draws are refused.
+/// (½ ∫ f(h) dh) / 2π, the p ≥ 4 remainder's N spread uniformly in φ, by a 64-point rule in γ.
+pub(crate) fn rest_integral(f: impl Fn(f64) -> DVec3) -> DVec3 {
+    let rule = GaussLegendre::cached(64);
+    let mut sum = DVec3::ZERO;
+    for (x, w) in rule.nodes.iter().zip(&rule.weights) {
+        let gamma = 0.5 * PI * x;
+        sum += *w * gamma.cos() * f(gamma.sin());
+    }
+    sum * (0.5 * PI * 0.5) / (2.0 * PI)
+}
+
 pub fn selection_from(a: &LobeValues) -> [f64; 5] {
     let m = a.0.map(channel_mean);
     let total: f64 = m.iter().sum();

@@ -94,6 +94,16 @@ impl DEon2011 {
         self
     }
 
+    /// [`DEon2011::tabulated`] with the table's selection densities from `selection`
+    /// ([`AzimuthalTable::build_with_selection`]), for a model that samples lobes with it.
+    pub(crate) fn tabulated_with_selection(mut self, selection: crate::table::Selection) -> Self {
+        self.table = Some(Arc::new(AzimuthalTable::build_with_selection(
+            &self.azimuthal,
+            Some(selection),
+        )));
+        self
+    }
+
     /// The table, when the model has one.
     pub fn table(&self) -> Option<&AzimuthalTable> {
         self.table.as_deref()

@@ -10,7 +10,7 @@
 //! β ≈ 0.02 the cap binds and the table blurs the narrowest lobes. Its error against direct
 //! quadrature is measured in the tests below and in BENCHMARKS.md.
 
-use crate::azimuthal::{AzimuthalScattering, Weighting, selection_from};
+use crate::azimuthal::{AzimuthalScattering, Weighting, rest_integral, selection_from};
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::wrap_pi;
 use crate::special::{GaussLegendre, normal_pdf};
@@ -25,6 +25,10 @@ const MAX_PHI_NODES: usize = 1024;
 const BLURRED: [usize; 3] = [1, 2, 3];
 /// Nodes per γ panel of the quadrature that fills the table.
 const PANEL_NODES: usize = 16;
+
+/// The lobe-selection probabilities at (θ_i, h) a sampler chooses with
+/// ([`AzimuthalTable::build_with_selection`]).
+pub type Selection<'a> = &'a (dyn Fn(f64, f64) -> [f64; 5] + Sync);
 
 /// N_p on a grid; see the module documentation.
 #[derive(Clone, Debug)]
@@ -53,6 +57,13 @@ pub struct TablePoint {
 impl AzimuthalTable {
     /// Fills the table by quadrature over h, on every available core.
     pub fn build(az: &AzimuthalScattering) -> Self {
+        Self::build_with_selection(az, None)
+    }
+
+    /// [`AzimuthalTable::build`] with the selection densities taken from `selection`, the
+    /// probabilities of each lobe at (θ_i, h) a sampler chooses with, instead of A(p, h)'s
+    /// own: so the densities the table reports are the ones that sampler realises.
+    pub fn build_with_selection(az: &AzimuthalScattering, selection: Option<Selection>) -> Self {
         let sigma_min = az.v_n[1..]
             .iter()
             .fold(f64::INFINITY, |m, v| m.min(v.sqrt()));
@@ -68,7 +79,8 @@ impl AzimuthalTable {
                 for (t, rows) in lobe.chunks_mut(rows_per_thread * slab).enumerate() {
                     s.spawn(move || {
                         for (r, row) in rows.chunks_mut(slab).enumerate() {
-                            fill_row(az, p, theta_i_at(t * rows_per_thread + r), phi_nodes, row);
+                            let theta_i = theta_i_at(t * rows_per_thread + r);
+                            fill_row(az, selection, p, theta_i, phi_nodes, row);
                         }
                     });
                 }
@@ -81,7 +93,10 @@ impl AzimuthalTable {
             .map(|i| {
                 let theta_i = theta_i_at(i);
                 let a = az.eval(4, theta_i, -theta_i, 0.0, Weighting::Attenuation);
-                let sel = az.eval(4, theta_i, -theta_i, 0.0, Weighting::Selection).x;
+                let sel = match selection {
+                    Some(f) => rest_integral(|h| DVec3::splat(f(theta_i, h)[4])).x,
+                    None => az.eval(4, theta_i, -theta_i, 0.0, Weighting::Selection).x,
+                };
                 Vec4::new(a.x as f32, a.y as f32, a.z as f32, sel as f32)
             })
             .collect();
@@ -270,6 +285,7 @@ impl AzimuthalTable {
 /// for each θ_d the wrapped Gaussians splatted onto the φ columns they reach.
 fn fill_row(
     az: &AzimuthalScattering,
+    selection: Option<Selection>,
     p: usize,
     theta_i: f64,
     phi_nodes: usize,
@@ -293,7 +309,11 @@ fn fill_row(
             let h = gamma.sin();
             let a = az.attenuation(theta_i, h);
             let weight = 0.25 * width * w * gamma.cos();
-            (h, a.0[p] * weight, selection_from(&a)[p] * weight)
+            let sel = match selection {
+                Some(f) => f(theta_i, h)[p],
+                None => selection_from(&a)[p],
+            };
+            (h, a.0[p] * weight, sel * weight)
         })
         .collect();
     let reach = 8.0 * sigma;

@@ -34,6 +34,7 @@
 //! form used here (see the test `tt_width_is_the_first_order_spread_of_the_exit_angle`).
 
 pub mod cones;
+mod selection;
 mod tt_offsets;
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
@@ -52,7 +53,8 @@ pub use cones::{
     variance_r, variance_trt, variance_tt,
 };
 use glam::DVec3;
-use std::sync::OnceLock;
+use selection::SelectionTable;
+use std::sync::{Arc, OnceLock};
 use tt_offsets::TtOffsets;
 
 /// No R offsets: the paper's form, or a lobe other than R.
@@ -91,6 +93,8 @@ pub struct NonSeparable {
     iterations: u32,
     /// TT's offset for each azimuth, tabulated on first use.
     tt_offsets: OnceLock<TtOffsets>,
+    /// The lobe-selection probabilities over (θ_i, h) of the tilted model's fast path.
+    selection: Option<Arc<SelectionTable>>,
 }
 
 impl NonSeparable {
@@ -116,13 +120,30 @@ impl NonSeparable {
             deon: DEon2011::with_azimuthal(params, az)?,
             iterations: DEFAULT_ITERATIONS,
             tt_offsets: OnceLock::new(),
+            selection: None,
         })
     }
 
-    /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]).
+    /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]) and,
+    /// through tilted scales, its lobe selection (`selection.rs`).
     pub fn tabulated(mut self) -> Self {
-        self.deon = self.deon.tabulated();
+        if self.azimuthal().scale_tilt == 0.0 {
+            self.deon = self.deon.tabulated();
+            return self;
+        }
+        let table = Arc::new(SelectionTable::build(self.azimuthal()));
+        let selection = |theta_i: f64, h: f64| table.at(theta_i, h);
+        self.deon = self.deon.tabulated_with_selection(&selection);
+        self.selection = Some(table);
         self
+    }
+
+    /// The probabilities of choosing each lobe at offset h: the table's where there is one.
+    fn lobe_selection(&self, theta_i: f64, h: f64) -> [f64; 5] {
+        match &self.selection {
+            Some(table) => table.at(theta_i, h),
+            None => self.azimuthal().selection(theta_i, h),
+        }
     }
 
     /// The same model sampling with at most `n` (≥ 1) fixed-point iterations.
@@ -223,7 +244,17 @@ impl NonSeparable {
     fn azimuthal_at(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> [DVec3; 5] {
         let az = self.azimuthal();
         let r = if az.scale_tilt != 0.0 {
-            az.eval_r_at_mirrors(theta_i, &pair.mirrors, weighting)
+            match (&self.selection, weighting) {
+                // R's share of the offsets that reach φ, as the sampler chooses it.
+                (Some(table), Weighting::Selection) => DVec3::splat(
+                    pair.mirrors
+                        .iter()
+                        .flatten()
+                        .map(|m| 0.5 * m.dh_dphi * table.at(theta_i, m.h)[0])
+                        .sum(),
+                ),
+                _ => az.eval_r_at_mirrors(theta_i, &pair.mirrors, weighting),
+            }
         } else {
             az.eval(0, theta_i, pair.theta_d, pair.phi, weighting)
         };
@@ -318,7 +349,7 @@ impl FiberModel for NonSeparable {
     /// TT and TRT by the fixed-point iteration. The weight is S / [`NonSeparable::pdf`].
     fn sample(&self, wi: FiberAngles, u: [f64; 4]) -> Option<FiberSample> {
         let h = 2.0 * u[0] - 1.0;
-        let selection = self.azimuthal().selection(wi.theta, h);
+        let selection = self.lobe_selection(wi.theta, h);
         if selection.iter().all(|&p| p == 0.0) {
             // Tilted scales lose everything entering at this h: pdf counts none of it.
             return None;
