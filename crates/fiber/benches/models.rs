@@ -133,6 +133,10 @@ fn table_build(c: &mut Criterion) {
             BatchSize::SmallInput,
         )
     });
+    let nonsep = NonSeparable::new(p).unwrap();
+    group.bench_function("build_nonseparable", |b| {
+        b.iter(|| black_box(nonsep.clone().tabulated()))
+    });
     let marschner = Marschner2003::from_fiber(&p).unwrap();
     group.bench_function("build_marschner2003", |b| {
         b.iter(|| black_box(marschner.clone().tabulated()))
