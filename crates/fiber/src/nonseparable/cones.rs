@@ -39,7 +39,8 @@ pub fn cone_trt(theta_i: f64, alpha: f64, eta: f64) -> f64 {
     )
 }
 
-fn pole_where_beyond(theta_i: f64, x: f64) -> f64 {
+/// The cone of an exit whose sine is x: asin x, or §2.4's pole −sign(θ_i) π/2 where |x| > 1.
+pub(crate) fn pole_where_beyond(theta_i: f64, x: f64) -> f64 {
     if x.abs() > 1.0 {
         -theta_i.signum() * 0.5 * PI
     } else {

@@ -1,0 +1,92 @@
+//! TT's and TRT's longitudinal lobes tabulated for the fast path: TRT's cone and width depend
+//! on θ_i alone (d'Eon et al. 2014 §2.5, at h = 0 and θ_d = −θ_i), TT's on θ_i and the offset
+//! h that Φ(1, h) = φ selects (§2.4), so on (θ_i, φ). Each evaluation and each fixed-point
+//! step of sampling otherwise solves TT's offset and runs the Nusselt rotations again. Both
+//! `eval` and `sample` read the same table, so the model they agree on is the interpolated
+//! one; its distance from the exact lobes is measured by `lobe_table_follows_the_exact_lobes`.
+//!
+//! What is tabulated is smooth where the lobes are not: the sine x of the Nusselt exit before
+//! any clamp (the cone is asin of x clamped, or the paper's pole where |x| > 1, both of which
+//! the caller applies to the interpolated x), and the width √v times cos θ_d (v itself grows
+//! as 1 / cos²θ_d at grazing incidence).
+
+use crate::table::locate;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Nodes over θ_i ∈ [−π/2, π/2] and over |φ| ∈ [0, π]: dense in θ_i, where the Nusselt
+/// rotations' clamped square roots put kinks into x.
+const THETA_I_NODES: usize = 1025;
+const PHI_NODES: usize = 129;
+/// The end nodes of θ_i are evaluated this far inside ±π/2.
+const GRAZING: f64 = 1e-4;
+
+/// A lobe's shape as the table holds it: the exit's sine x and √v cos θ_d.
+pub type Shape = [f64; 2];
+
+/// The [`Shape`] of TT over (θ_i, |φ|) and of TRT over θ_i.
+#[derive(Clone, Debug)]
+pub struct LobeTable {
+    tt: Vec<[f64; 2]>,
+    trt: Vec<[f64; 2]>,
+}
+
+impl LobeTable {
+    /// Fills the table from `shape(p, θ_i, φ)`, the exact shapes (TT's even in φ), a row of
+    /// θ_i per task on every available core.
+    pub fn build(shape: impl Fn(usize, f64, f64) -> Shape + Sync) -> Self {
+        let mut tt = vec![[0.0; 2]; THETA_I_NODES * PHI_NODES];
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let rows_per_thread = THETA_I_NODES.div_ceil(threads);
+        let shape = &shape;
+        std::thread::scope(|s| {
+            for (t, rows) in tt.chunks_mut(rows_per_thread * PHI_NODES).enumerate() {
+                s.spawn(move || {
+                    for (r, row) in rows.chunks_mut(PHI_NODES).enumerate() {
+                        let theta_i = theta_i_at(t * rows_per_thread + r);
+                        for (k, cell) in row.iter_mut().enumerate() {
+                            *cell = shape(1, theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
+                        }
+                    }
+                });
+            }
+        });
+        let trt = (0..THETA_I_NODES)
+            .map(|i| shape(2, theta_i_at(i), 0.0))
+            .collect();
+        Self { tt, trt }
+    }
+
+    /// TT's shape at (θ_i, φ), bilinear.
+    #[inline]
+    pub fn tt(&self, theta_i: f64, phi: f64) -> Shape {
+        let (i0, fi) = theta_i_cell(theta_i);
+        let (k0, fk) = locate(phi.abs() / PI, PHI_NODES);
+        let (fi, fk) = (fi as f64, fk as f64);
+        let at = i0 * PHI_NODES + k0;
+        let next = at + PHI_NODES;
+        let lerp =
+            |a: [f64; 2], b: [f64; 2], f: f64| [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];
+        let low = lerp(self.tt[at], self.tt[at + 1], fk);
+        let high = lerp(self.tt[next], self.tt[next + 1], fk);
+        lerp(low, high, fi)
+    }
+
+    /// TRT's shape at θ_i, linear.
+    #[inline]
+    pub fn trt(&self, theta_i: f64) -> Shape {
+        let (i0, fi) = theta_i_cell(theta_i);
+        let fi = fi as f64;
+        let (a, b) = (self.trt[i0], self.trt[i0 + 1]);
+        [a[0] + fi * (b[0] - a[0]), a[1] + fi * (b[1] - a[1])]
+    }
+}
+
+fn theta_i_at(i: usize) -> f64 {
+    (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
+        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+}
+
+#[inline]
+fn theta_i_cell(theta_i: f64) -> (usize, f32) {
+    locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES)
+}
