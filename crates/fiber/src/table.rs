@@ -389,6 +389,55 @@ pub(crate) fn locate(t: f64, n: usize) -> (usize, f32) {
     (i, (x - i as f64) as f32)
 }
 
+/// Fills a row-major grid, `fill(row index, row)` for each row of `row_len` cells, the rows
+/// shared out over every available core.
+pub(crate) fn fill_rows<T: Send>(
+    cells: &mut [T],
+    row_len: usize,
+    fill: impl Fn(usize, &mut [T]) + Sync,
+) {
+    let rows = cells.len() / row_len;
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let rows_per_thread = rows.div_ceil(threads).max(1);
+    let fill = &fill;
+    std::thread::scope(|s| {
+        for (t, chunk) in cells.chunks_mut(rows_per_thread * row_len).enumerate() {
+            s.spawn(move || {
+                for (r, row) in chunk.chunks_mut(row_len).enumerate() {
+                    fill(t * rows_per_thread + r, row);
+                }
+            });
+        }
+    });
+}
+
+/// The bilinear blend of a row-major grid of texels: cell `at` and its neighbours along the
+/// row (`at + 1`) and the next row (`at + stride`), at fractions `f_row` across rows and
+/// `f_col` along them.
+#[inline]
+pub(crate) fn bilinear<const N: usize>(
+    texels: &[[f32; N]],
+    at: usize,
+    stride: usize,
+    f_row: f32,
+    f_col: f32,
+) -> [f32; N] {
+    let weights = [
+        (1.0 - f_row) * (1.0 - f_col),
+        (1.0 - f_row) * f_col,
+        f_row * (1.0 - f_col),
+        f_row * f_col,
+    ];
+    let taps = [at, at + 1, at + stride, at + stride + 1];
+    let mut out = [0.0f32; N];
+    for (tap, w) in taps.into_iter().zip(weights) {
+        for (o, t) in out.iter_mut().zip(&texels[tap]) {
+            *o += w * t;
+        }
+    }
+    out
+}
+
 #[inline]
 fn lerp4(a: Vec4, b: Vec4, t: f32) -> Vec4 {
     a + (b - a) * t

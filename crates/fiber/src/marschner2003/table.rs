@@ -16,7 +16,7 @@
 
 use super::azimuthal::{Interface, azimuthal, azimuthal_trt};
 use super::params::MarschnerParams;
-use crate::table::locate;
+use crate::table::{bilinear, fill_rows, locate};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -49,17 +49,7 @@ impl NpTable {
     pub fn build(params: &MarschnerParams) -> Self {
         let phi_nodes = phi_nodes_for(params.caustic_width).clamp(MIN_PHI_NODES, MAX_PHI_NODES);
         let mut texels = vec![[0.0f32; 6]; THETA_D_NODES * phi_nodes];
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-        let rows_per_thread = THETA_D_NODES.div_ceil(threads);
-        std::thread::scope(|s| {
-            for (t, rows) in texels.chunks_mut(rows_per_thread * phi_nodes).enumerate() {
-                s.spawn(move || {
-                    for (r, row) in rows.chunks_mut(phi_nodes).enumerate() {
-                        fill_row(params, t * rows_per_thread + r, row);
-                    }
-                });
-            }
-        });
+        fill_rows(&mut texels, phi_nodes, |d, row| fill_row(params, d, row));
         Self { phi_nodes, texels }
     }
 
@@ -73,26 +63,13 @@ impl NpTable {
         }
         let (d0, fd) = locate(x, THETA_D_NODES);
         let (f0, ff) = locate(phi.abs() / PI, self.phi_nodes);
-        let at = d0 * self.phi_nodes + f0;
-        let next = at + self.phi_nodes;
-        let w = [
-            (1.0 - fd) * (1.0 - ff),
-            (1.0 - fd) * ff,
-            fd * (1.0 - ff),
-            fd * ff,
-        ];
-        let taps = [
-            &self.texels[at],
-            &self.texels[at + 1],
-            &self.texels[next],
-            &self.texels[next + 1],
-        ];
-        let mut n = [0.0f32; 6];
-        for (tap, w) in taps.into_iter().zip(w) {
-            for (n, t) in n.iter_mut().zip(tap) {
-                *n += w * t;
-            }
-        }
+        let n = bilinear(
+            &self.texels,
+            d0 * self.phi_nodes + f0,
+            self.phi_nodes,
+            fd,
+            ff,
+        );
         Some(std::array::from_fn(|p| {
             DVec3::new(n[3 * p] as f64, n[3 * p + 1] as f64, n[3 * p + 2] as f64)
         }))

@@ -273,16 +273,8 @@ fn tabulated_model_follows_the_exact_one() {
 }
 
 #[test]
-fn tabulated_model_is_reciprocal_and_samples_its_own_eval() {
+fn tabulated_model_samples_its_own_eval() {
     let m = model(MarschnerParams::default()).tabulated();
-    for k in 0..300 {
-        let x = k as f64;
-        let a = FiberAngles::new(1.2 * (0.7 * x).sin(), wrap_pi(0.37 * x));
-        let b = FiberAngles::new(1.3 * (1.3 * x).cos(), wrap_pi(1.11 * x + 0.5));
-        let ab = m.eval(a, b).total() / b.theta.cos();
-        let ba = m.eval(b, a).total() / a.theta.cos();
-        assert!((ab - ba).abs().max_element() <= 1e-9 * ab.max_element().max(1e-300));
-    }
     let wi = FiberAngles::new(0.45, -0.3);
     check_weights(&m, wi, 20_000, 8, 0.0).unwrap();
     chi2_test(&m, wi, 1 << 19, 41, (32, 64), 1).unwrap();
@@ -469,21 +461,24 @@ fn eccentricity_one_is_circular_and_other_values_change_trt_only() {
 
 #[test]
 fn reciprocal_in_marschners_units() {
-    // Marschner's S (= ours / cos θ_o) is symmetric in ω_i and ω_o.
-    let m = model(MarschnerParams {
+    // Marschner's S (= ours / cos θ_o) is symmetric in ω_i and ω_o: exactly, elliptical, and
+    // from the table (symmetric in θ_d and φ).
+    let elliptical = model(MarschnerParams {
         eccentricity: 0.9,
         ..Default::default()
     });
-    for k in 0..300 {
-        let x = k as f64;
-        let a = FiberAngles::new(1.2 * (0.7 * x).sin(), wrap_pi(0.37 * x));
-        let b = FiberAngles::new(1.3 * (1.3 * x).cos(), wrap_pi(1.11 * x + 0.5));
-        let ab = m.eval(a, b).total() / b.theta.cos();
-        let ba = m.eval(b, a).total() / a.theta.cos();
-        assert!(
-            (ab - ba).abs().max_element() <= 1e-9 * ab.max_element().max(1e-300),
-            "{ab} {ba}"
-        );
+    for m in [elliptical, model(MarschnerParams::default()).tabulated()] {
+        for k in 0..300 {
+            let x = k as f64;
+            let a = FiberAngles::new(1.2 * (0.7 * x).sin(), wrap_pi(0.37 * x));
+            let b = FiberAngles::new(1.3 * (1.3 * x).cos(), wrap_pi(1.11 * x + 0.5));
+            let ab = m.eval(a, b).total() / b.theta.cos();
+            let ba = m.eval(b, a).total() / a.theta.cos();
+            assert!(
+                (ab - ba).abs().max_element() <= 1e-9 * ab.max_element().max(1e-300),
+                "{ab} {ba}"
+            );
+        }
     }
 }
 
@@ -643,38 +638,33 @@ fn from_fiber_maps_the_shared_parameters() {
     ));
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
-    #[test]
-    fn tabulated_finite_and_non_negative_everywhere(
-        theta_i in -FRAC_PI_2..=FRAC_PI_2,
-        theta_o in -FRAC_PI_2..=FRAC_PI_2,
-        phi in -PI..=PI,
-        eta in 1.01f64..=3.0,
-        mu_a in 0.0f64..=100.0,
-        caustic_deg in 0.3f64..=60.0,
-        u in prop::array::uniform4(0.0f64..1.0),
-    ) {
-        let m = model(MarschnerParams {
-            eta,
-            mu_a: DVec3::new(mu_a, 0.5 * mu_a, 0.0),
-            caustic_width: caustic_deg.to_radians(),
-            ..Default::default()
-        })
-        .tabulated();
-        prop_assert!(m.table().is_some());
-        let (wi, wo) = (FiberAngles::new(theta_i, 0.0), FiberAngles::new(theta_o, phi));
-        for v in m.eval(wi, wo).0 {
-            prop_assert!(v.is_finite() && v.min_element() >= 0.0, "eval {v}");
-        }
-        if let Some(s) = m.sample(wi, u) {
-            prop_assert!(s.weight.is_finite() && s.weight.min_element() >= 0.0, "weight {}", s.weight);
-        }
+/// eval, pdf and a sample at one pair are finite and non-negative, the sample inside the domain.
+fn check_finite(
+    m: &Marschner2003,
+    wi: FiberAngles,
+    wo: FiberAngles,
+    u: [f64; 4],
+) -> Result<(), TestCaseError> {
+    for v in m.eval(wi, wo).0 {
+        prop_assert!(v.is_finite() && v.min_element() >= 0.0, "eval {v}");
     }
+    let pdf = m.pdf(wi, wo);
+    prop_assert!(pdf.is_finite() && pdf >= 0.0, "pdf {pdf}");
+    if let Some(s) = m.sample(wi, u) {
+        prop_assert!(
+            s.weight.is_finite() && s.weight.min_element() >= 0.0,
+            "weight {}",
+            s.weight
+        );
+        prop_assert!(s.pdf.is_finite() && s.pdf > 0.0);
+        prop_assert!(s.wo.theta.abs() <= FRAC_PI_2 && s.wo.phi.abs() <= PI);
+    }
+    Ok(())
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(512))]
+    /// Exact and tabulated (half the cases: a table per case), circular and elliptical.
     #[test]
     fn finite_and_non_negative_everywhere(
         theta_i in -FRAC_PI_2..=FRAC_PI_2,
@@ -686,6 +676,8 @@ proptest! {
         mu_a in 0.0f64..=100.0,
         alpha_deg in -10.0f64..=10.0,
         eccentricity in 0.75f64..=1.3,
+        caustic_deg in 0.3f64..=60.0,
+        tabulated: bool,
         u in prop::array::uniform4(0.0f64..1.0),
     ) {
         let m = model(MarschnerParams {
@@ -694,18 +686,11 @@ proptest! {
             alpha_r: alpha_deg.to_radians(),
             mu_a: DVec3::new(mu_a, 0.5 * mu_a, 0.0),
             eccentricity,
+            caustic_width: caustic_deg.to_radians(),
             ..Default::default()
         });
-        let (wi, wo) = (FiberAngles::new(theta_i, phi_i), FiberAngles::new(theta_o, phi_o));
-        for v in m.eval(wi, wo).0 {
-            prop_assert!(v.is_finite() && v.min_element() >= 0.0, "eval {v}");
-        }
-        let pdf = m.pdf(wi, wo);
-        prop_assert!(pdf.is_finite() && pdf >= 0.0, "pdf {pdf}");
-        if let Some(s) = m.sample(wi, u) {
-            prop_assert!(s.weight.is_finite() && s.weight.min_element() >= 0.0, "weight {}", s.weight);
-            prop_assert!(s.pdf.is_finite() && s.pdf > 0.0);
-            prop_assert!(s.wo.theta.abs() <= FRAC_PI_2 && s.wo.phi.abs() <= PI);
-        }
+        let m = if tabulated { m.tabulated() } else { m };
+        prop_assert_eq!(m.table().is_some(), tabulated);
+        check_finite(&m, FiberAngles::new(theta_i, phi_i), FiberAngles::new(theta_o, phi_o), u)?;
     }
 }

@@ -10,7 +10,7 @@
 //! the caller applies to the interpolated x), and the width √v times cos θ_d (v itself grows
 //! as 1 / cos²θ_d at grazing incidence).
 
-use crate::table::locate;
+use crate::table::{fill_rows, locate};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Nodes over θ_i ∈ [−π/2, π/2] and over |φ| ∈ [0, π]: dense in θ_i, where the Nusselt
@@ -35,19 +35,10 @@ impl LobeTable {
     /// θ_i per task on every available core.
     pub fn build(shape: impl Fn(usize, f64, f64) -> Shape + Sync) -> Self {
         let mut tt = vec![[0.0; 2]; THETA_I_NODES * PHI_NODES];
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-        let rows_per_thread = THETA_I_NODES.div_ceil(threads);
-        let shape = &shape;
-        std::thread::scope(|s| {
-            for (t, rows) in tt.chunks_mut(rows_per_thread * PHI_NODES).enumerate() {
-                s.spawn(move || {
-                    for (r, row) in rows.chunks_mut(PHI_NODES).enumerate() {
-                        let theta_i = theta_i_at(t * rows_per_thread + r);
-                        for (k, cell) in row.iter_mut().enumerate() {
-                            *cell = shape(1, theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
-                        }
-                    }
-                });
+        fill_rows(&mut tt, PHI_NODES, |i, row| {
+            let theta_i = theta_i_at(i);
+            for (k, cell) in row.iter_mut().enumerate() {
+                *cell = shape(1, theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
             }
         });
         let trt = (0..THETA_I_NODES)

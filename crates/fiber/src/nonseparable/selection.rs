@@ -14,7 +14,7 @@
 //! interpolation in φ.
 
 use crate::azimuthal::AzimuthalScattering;
-use crate::table::locate;
+use crate::table::{bilinear, fill_rows, locate};
 use std::f64::consts::FRAC_PI_2;
 
 /// Nodes over θ_i ∈ [−π/2, π/2] and over h ∈ [−1, 1].
@@ -34,22 +34,12 @@ impl SelectionTable {
     /// Fills the table with the exact probabilities of `az`, a row of θ_i per task.
     pub fn build(az: &AzimuthalScattering) -> Self {
         let mut values = vec![[0.0f32; 5]; THETA_I_NODES * H_NODES];
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-        let rows_per_thread = THETA_I_NODES.div_ceil(threads);
-        std::thread::scope(|s| {
-            for (t, rows) in values.chunks_mut(rows_per_thread * H_NODES).enumerate() {
-                s.spawn(move || {
-                    for (r, row) in rows.chunks_mut(H_NODES).enumerate() {
-                        let i = t * rows_per_thread + r;
-                        let theta_i = (-FRAC_PI_2
-                            + 2.0 * FRAC_PI_2 * i as f64 / (THETA_I_NODES - 1) as f64)
-                            .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING);
-                        for (k, cell) in row.iter_mut().enumerate() {
-                            let h = -1.0 + 2.0 * k as f64 / (H_NODES - 1) as f64;
-                            *cell = az.selection(theta_i, h).map(|x| x as f32);
-                        }
-                    }
-                });
+        fill_rows(&mut values, H_NODES, |i, row| {
+            let theta_i = (-FRAC_PI_2 + 2.0 * FRAC_PI_2 * i as f64 / (THETA_I_NODES - 1) as f64)
+                .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING);
+            for (k, cell) in row.iter_mut().enumerate() {
+                let h = -1.0 + 2.0 * k as f64 / (H_NODES - 1) as f64;
+                *cell = az.selection(theta_i, h).map(|x| x as f32);
             }
         });
         Self { values }
@@ -61,26 +51,7 @@ impl SelectionTable {
     pub fn at(&self, theta_i: f64, h: f64) -> [f64; 5] {
         let (i0, fi) = locate((theta_i + FRAC_PI_2) / (2.0 * FRAC_PI_2), THETA_I_NODES);
         let (k0, fk) = locate(0.5 * (h + 1.0), H_NODES);
-        let at = i0 * H_NODES + k0;
-        let next = at + H_NODES;
-        let w = [
-            (1.0 - fi) * (1.0 - fk),
-            (1.0 - fi) * fk,
-            fi * (1.0 - fk),
-            fi * fk,
-        ];
-        let taps = [
-            &self.values[at],
-            &self.values[at + 1],
-            &self.values[next],
-            &self.values[next + 1],
-        ];
-        let mut p = [0.0f32; 5];
-        for (tap, w) in taps.into_iter().zip(w) {
-            for (p, t) in p.iter_mut().zip(tap) {
-                *p += w * t;
-            }
-        }
+        let p = bilinear(&self.values, i0 * H_NODES + k0, H_NODES, fi, fk);
         let p = p.map(|x| x as f64);
         let sum: f64 = p.iter().sum();
         if sum > 0.0 {
