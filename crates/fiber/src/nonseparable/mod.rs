@@ -27,6 +27,11 @@
 //! - Each M still integrates to 1, so ∫ S dω is the budget of [`NonSeparable::energy_budget`]
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
+//! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
+//! TRT's cones and widths from [`lobe_table`] and, through tilted scales, the lobe-selection
+//! probabilities from `selection.rs`; the model without tables is the reference they are
+//! measured against.
+//!
 //! Erratum (both forms): d'Eon et al. 2014 §2.4 prints D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The
 //! first-order derivatives it gives in §2.2, dx_TT/dα₁,₂ = ηz′ − z, lead instead to
 //! D_TT = 2(ηz′ − z) / cos θ_d, which agrees with eq. 6's convention for R (per-axis Beckmann
