@@ -44,8 +44,8 @@ pub fn wrapped_gaussian(x: f64, v: f64) -> f64 {
     sum / sigma
 }
 
-/// [`wrapped_gaussian`] of standard deviation `sigma` less the images beyond
-/// [`NEGLIGIBLE_SIGMAS`], each below e^{−72} ≈ 5e-32 of the lobe's peak: for a caller that
+/// [`wrapped_gaussian`] of standard deviation `sigma` less the images beyond 12σ
+/// (`NEGLIGIBLE_SIGMAS`), each below e^{−72} ≈ 5e-32 of the lobe's peak: for a caller that
 /// adds it to a density bounded below (a proposal with a uniform share), where they are lost
 /// to rounding. Most x need one image, where [`wrapped_gaussian`] takes three to five.
 pub fn wrapped_gaussian_core(x: f64, sigma: f64) -> f64 {

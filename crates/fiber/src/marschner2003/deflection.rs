@@ -114,7 +114,7 @@ impl CubicDeflection {
     /// Σ 1/|2 dΦ̂/dh| over every root of Φ̂(p, γ) ≡ φ: the density in φ of Φ̂(p, asin h)
     /// with h uniform on [−1, 1]. A deflection that falls over all of [−π/2, π/2] (R always,
     /// TT for η′ > 2/√3 and TRT for η′ > 2, where pc < π/3) has at most one root, found by
-    /// [`Self::falling_root`]; any other by [`Self::roots`].
+    /// `falling_root`; any other by [`Self::roots`].
     pub fn offset_density(&self, phi: f64) -> f64 {
         if self.falls() {
             return self

@@ -54,7 +54,7 @@ impl NpTable {
     }
 
     /// N_TT and N_TRT at (θ_d, φ), φ ∈ [−π, π]; `None` beyond the table's reach in |θ_d|
-    /// ([`THETA_D_MAX`]).
+    /// (`THETA_D_MAX`).
     #[inline]
     pub fn lookup(&self, theta_d: f64, phi: f64) -> Option<[DVec3; 2]> {
         let x = theta_d.abs() / THETA_D_MAX;

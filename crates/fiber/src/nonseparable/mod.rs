@@ -28,7 +28,7 @@
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
-//! TRT's cones and widths from [`lobe_table`] and, through tilted scales, the lobe-selection
+//! TRT's cones and widths from `lobe_table.rs` and, through tilted scales, the lobe-selection
 //! probabilities from `selection.rs`; the model without tables is the reference they are
 //! measured against.
 //!
