@@ -136,8 +136,9 @@ impl NonSeparable {
         })
     }
 
-    /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]) and,
-    /// through tilted scales, its lobe selection (`selection.rs`).
+    /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]), TT's
+    /// and TRT's lobes (`lobe_table.rs`) and, through tilted scales, its lobe selection
+    /// (`selection.rs`).
     pub fn tabulated(mut self) -> Self {
         let lobes = LobeTable::build(|p, theta_i, phi| self.lobe_shape(p, theta_i, phi));
         self.lobes = Some(Arc::new(lobes));
