@@ -270,8 +270,6 @@ fn deflection_slope_bound(p: usize, eta_p: f64) -> f64 {
     2.0f64.max(2.0 * p as f64 / eta_p - 2.0)
 }
 
-/// The selection probabilities of the five lobes from their attenuations; none at an offset
-/// that sends nothing anywhere (tilted scales can lose all of it), whose draws are refused.
 /// (½ ∫ f(h) dh) / 2π, the p ≥ 4 remainder's N spread uniformly in φ, by a 64-point rule in γ.
 pub(crate) fn rest_integral(f: impl Fn(f64) -> DVec3) -> DVec3 {
     let rule = GaussLegendre::cached(64);
@@ -283,6 +281,8 @@ pub(crate) fn rest_integral(f: impl Fn(f64) -> DVec3) -> DVec3 {
     sum * (0.5 * PI * 0.5) / (2.0 * PI)
 }
 
+/// The selection probabilities of the five lobes from their attenuations; none at an offset
+/// that sends nothing anywhere (tilted scales can lose all of it), whose draws are refused.
 pub fn selection_from(a: &LobeValues) -> [f64; 5] {
     let m = a.0.map(channel_mean);
     let total: f64 = m.iter().sum();

@@ -115,7 +115,7 @@ impl CubicDeflection {
     /// with h uniform on [−1, 1]. A deflection that falls over all of [−π/2, π/2] (R always,
     /// TT for η′ > 2/√3 and TRT for η′ > 2, where pc < π/3) has at most one root, found by
     /// `falling_root`; any other by [`Self::roots`].
-    pub fn offset_density(&self, phi: f64) -> f64 {
+    pub(super) fn offset_density(&self, phi: f64) -> f64 {
         if self.falls() {
             return self
                 .falling_root(phi)
@@ -173,7 +173,7 @@ impl CubicDeflection {
     }
 
     /// 1/|2 dΦ̂/dh| = cos γ / (2 |dΦ̂/dγ|), the density in φ of the offsets near γ.
-    pub fn inverse_spread(&self, gamma: f64) -> f64 {
+    pub(super) fn inverse_spread(&self, gamma: f64) -> f64 {
         cos_quadrant(gamma).max(0.0) / (2.0 * self.slope(gamma).abs().max(MIN_SLOPE))
     }
 }

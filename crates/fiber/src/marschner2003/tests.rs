@@ -281,8 +281,9 @@ fn tabulated_model_samples_its_own_eval() {
 }
 
 #[test]
-fn lobe_choice_and_trt_proposal_read_their_nodes() {
-    // Between nodes the proposals interpolate; at a node they are what they tabulate.
+fn lobe_choice_reads_its_nodes() {
+    // Between nodes the lobe choice interpolates; at a node it is what it tabulates, and it
+    // always sums to 1.
     let params = MarschnerParams::default();
     let m = model(params);
     for k in [0, 1, 77, 128, 255, 256] {
