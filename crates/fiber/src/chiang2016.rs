@@ -47,7 +47,7 @@ use crate::attenuation::{Inclination, attenuation_at};
 use crate::deon2011::weighted_sample;
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues, channel_mean};
-use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
+use crate::longitudinal::{LongitudinalLobe, ShiftedCones};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::ranges;
@@ -67,12 +67,8 @@ const LOBES: usize = 4;
 pub struct Chiang2016 {
     params: FiberParams,
     beta_n: f64,
-    /// M_p's width per lobe (R, TT, TRT, remainder).
-    widths: [LongitudinalWidth; LOBES],
-    /// Offset of each lobe's cone from −θ_i.
-    cone_shift: [f64; LOBES],
-    /// Sine and cosine of each cone shift, for the cone by the angle-sum identities.
-    shift_sin_cos: [(f64, f64); LOBES],
+    /// M_p per lobe (R, TT, TRT, remainder): its variance and its cone's offset from −θ_i.
+    cones: ShiftedCones,
     /// The logistic scale s.
     s: f64,
     /// The trimmed logistic's normaliser: the logistic's mass on [−π, π].
@@ -103,9 +99,7 @@ impl Chiang2016 {
         Ok(Self {
             params,
             beta_n,
-            widths: v.map(LongitudinalWidth::new),
-            cone_shift,
-            shift_sin_cos: cone_shift.map(f64::sin_cos),
+            cones: ShiftedCones::new(v, cone_shift),
             s,
             trim: logistic_cdf(PI, s) - logistic_cdf(-PI, s),
         })
@@ -131,7 +125,7 @@ impl Chiang2016 {
 
     /// The longitudinal lobe of lobe `p` (0 R, 1 TT, 2 TRT, 3 the remainder) for light at θ_i.
     pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
-        LongitudinalLobe::new(self.widths[p].v, -theta_i + self.cone_shift[p])
+        self.cones.lobe(p, theta_i)
     }
 
     /// M_p(θ_o) for every lobe.
@@ -144,21 +138,7 @@ impl Chiang2016 {
     #[inline]
     fn m_from(&self, si: f64, ci: f64, theta_o: f64) -> [f64; LOBES] {
         let (so, co) = sin_cos_quadrant(theta_o);
-        // Written out, not `array::from_fn` or a closure, which the compiler kept as a call
-        // per lobe (its arguments through memory).
-        [
-            self.m_lobe(0, si, ci, so, co),
-            self.m_lobe(1, si, ci, so, co),
-            self.m_lobe(2, si, ci, so, co),
-            self.m_lobe(3, si, ci, so, co),
-        ]
-    }
-
-    /// M_p of one lobe; the cone −θ_i + shift by the angle-sum identities.
-    #[inline(always)]
-    fn m_lobe(&self, p: usize, si: f64, ci: f64, so: f64, co: f64) -> f64 {
-        let (ss, cs) = self.shift_sin_cos[p];
-        self.widths[p].eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
+        self.cones.eval(si, ci, so, co)
     }
 
     /// What every lobe shares at offset h for light at θ_i: one sine and cosine of θ_i, the
@@ -231,9 +211,7 @@ impl Chiang2016 {
     fn sample_near(&self, wi: FiberAngles, at: &Offset, u: [f64; 3]) -> Option<FiberSample> {
         let (p, u_phi) = select_and_remap(&selection(&at.a), u[0]);
         let (si, ci) = at.sin_cos_i;
-        let (ss, cs) = self.shift_sin_cos[p];
-        // The cone −θ_i + shift, by the angle-sum identities.
-        let sin_o = self.widths[p].sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[1], u[2]);
+        let sin_o = self.cones.sample_sin(p, si, ci, u[1], u[2]);
         let theta_o = asin_fast(sin_o);
         let phi = match p {
             3 => 2.0 * PI * u_phi - PI,
@@ -450,7 +428,7 @@ mod tests {
 
     fn rule(m: &Chiang2016) -> FurnaceRule {
         FurnaceRule {
-            beta: m.widths[1].v.sqrt(),
+            beta: m.cones.variance(1).sqrt(),
             max_shift: 4.0 * m.params.alpha.abs(),
             resolution: 1,
         }

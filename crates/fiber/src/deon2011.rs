@@ -21,7 +21,7 @@ use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{Lobe, LobeValues};
-use crate::longitudinal::{LongitudinalLobe, LongitudinalWidth};
+use crate::longitudinal::{LongitudinalLobe, ShiftedCones};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::special::{asin_fast, cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
@@ -35,10 +35,9 @@ use std::sync::Arc;
 pub struct DEon2011 {
     params: FiberParams,
     azimuthal: AzimuthalScattering,
-    /// Per lobe: longitudinal variance v_p and cone shift added to −θ_i.
-    longitudinal: [(f64, f64); 5],
-    /// The same lobes prepared for evaluation: width, and sine and cosine of the shift.
-    prepared: [(LongitudinalWidth, f64, f64); 4],
+    /// M_p of R, TT, TRT and TRRT (the remainder shares TRRT's): variance v_p, cone at
+    /// −θ_i + shift_p.
+    cones: ShiftedCones,
     table: Option<Arc<AzimuthalTable>>,
 }
 
@@ -56,25 +55,17 @@ impl DEon2011 {
     ) -> Result<Self, ParamError> {
         params.validate()?;
         let (b, e, a) = (params.beta, params.eta, params.alpha);
-        let lobe = |width: f64, shift: f64| ((b * width).powi(2), shift * a);
-        let trrt = lobe(3.0 * e - 1.0, -(6.0 * e - 2.0));
-        let longitudinal = [
-            lobe(std::f64::consts::SQRT_2, 2.0),
-            lobe(e - 1.0, -2.0 * (e - 1.0)),
-            lobe(2.0 * e - 1.0, -(4.0 * e - 2.0)),
-            trrt,
-            trrt,
+        let width = [
+            std::f64::consts::SQRT_2,
+            e - 1.0,
+            2.0 * e - 1.0,
+            3.0 * e - 1.0,
         ];
-        let prepared = std::array::from_fn(|p| {
-            let (v, shift) = longitudinal[p];
-            let (sin_shift, cos_shift) = shift.sin_cos();
-            (LongitudinalWidth::new(v), sin_shift, cos_shift)
-        });
+        let shift = [2.0, -2.0 * (e - 1.0), -(4.0 * e - 2.0), -(6.0 * e - 2.0)];
         Ok(Self {
             params,
             azimuthal,
-            longitudinal,
-            prepared,
+            cones: ShiftedCones::new(width.map(|w| (b * w).powi(2)), shift.map(|s| s * a)),
             table: None,
         })
     }
@@ -266,11 +257,8 @@ impl DEon2011 {
         let h = 2.0 * u[0] - 1.0;
         let a = attenuation_at(inc.inclination, h, self.params.mu_a);
         let (p, u_phi) = select_and_remap(&selection_from(&a), u[1]);
-        let (width, ss, cs) = self.prepared[p.min(3)];
-        // The cone −θ_i + shift, by the angle-sum identities.
         let (si, ci) = (inc.si, inc.ci);
-        let theta_o =
-            asin_fast(width.sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3]));
+        let theta_o = asin_fast(self.cones.sample_sin(p.min(3), si, ci, u[2], u[3]));
         let (so, co) = sin_cos_quadrant(theta_o);
         let eta_ratio = table.eta_ratio_from_cos_2d(ci * co + si * so);
         let eta_p = self.azimuthal.eta / eta_ratio;
@@ -291,27 +279,12 @@ impl DEon2011 {
     /// M_p from sin θ_i, cos θ_i, sin θ_o, cos θ_o.
     #[inline]
     fn m_from(&self, si: f64, ci: f64, so: f64, co: f64) -> [f64; 4] {
-        // Written out, not `array::from_fn` or a closure, which the compiler kept as a call
-        // per lobe (its arguments through memory).
-        [
-            self.m_lobe(0, si, ci, so, co),
-            self.m_lobe(1, si, ci, so, co),
-            self.m_lobe(2, si, ci, so, co),
-            self.m_lobe(3, si, ci, so, co),
-        ]
+        self.cones.eval(si, ci, so, co)
     }
 
-    /// M_p of one lobe; the cone −θ_i + shift by the angle-sum identities.
-    #[inline(always)]
-    fn m_lobe(&self, p: usize, si: f64, ci: f64, so: f64, co: f64) -> f64 {
-        let (width, ss, cs) = self.prepared[p];
-        width.eval(-si * cs + ci * ss, ci * cs + si * ss, so, co)
-    }
-
-    /// The longitudinal lobe of mode p for light at θ_i.
+    /// The longitudinal lobe of mode p for light at θ_i (the remainder, p ≥ 4, has TRRT's).
     pub fn longitudinal(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
-        let (v, shift) = self.longitudinal[p];
-        LongitudinalLobe::new(v, -theta_i + shift)
+        self.cones.lobe(p.min(3), theta_i)
     }
 }
 
@@ -334,10 +307,7 @@ impl FiberModel for DEon2011 {
         let h = 2.0 * u[0] - 1.0;
         let (p, u_phi) = select_and_remap(&self.azimuthal.selection(wi.theta, h), u[1]);
         let (si, ci) = sin_cos_quadrant(wi.theta);
-        let (width, ss, cs) = self.prepared[p.min(3)];
-        // The cone −θ_i + shift, by the angle-sum identities.
-        let theta_o =
-            asin_fast(width.sample_sin(-si * cs + ci * ss, ci * cs + si * ss, u[2], u[3]));
+        let theta_o = asin_fast(self.cones.sample_sin(p.min(3), si, ci, u[2], u[3]));
         let theta_d = 0.5 * (theta_o - wi.theta);
         let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));

@@ -8,10 +8,11 @@
 //! cosine is part of the measure, so M carries no such factor.
 
 use crate::special::{
-    I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, i0_as, i0_scaled_as, log_i0, log1m_exp_neg,
-    sin_cos_quadrant,
+    I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, exp_lanes, i0_as, i0_as_lanes, i0_scaled_as,
+    i0_scaled_as_lanes, log_i0, log1m_exp_neg, sin_cos_quadrant,
 };
 use std::f64::consts::PI;
+use wide::{CmpLt, f64x4};
 
 /// The smallest variance M is evaluated with: below it the lobe is narrower than f64 resolves.
 pub const MIN_VARIANCE: f64 = 1e-9;
@@ -50,6 +51,53 @@ impl LongitudinalLobe {
     pub fn sample(&self, u1: f64, u2: f64) -> f64 {
         let (sc, cc) = self.theta_cone.sin_cos();
         asin_fast(sample_sin_o(self.v, (-2.0 / self.v).exp(), sc, cc, u1, u2))
+    }
+}
+
+/// A lobe given by its variance and its cone's sine and cosine, for a model that knows those
+/// without the angle (an exit direction, a mirror): what [`ConeLobe::eval_four`] needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ConeLobe {
+    pub v: f64,
+    pub sin_cone: f64,
+    pub cos_cone: f64,
+}
+
+impl ConeLobe {
+    /// The lobe whose cone has sine `sin_cone` (clamped to [−1, 1]) and a cosine of at least 0.
+    #[inline]
+    pub fn from_sin(v: f64, sin_cone: f64) -> Self {
+        let sin_cone = sin_cone.clamp(-1.0, 1.0);
+        Self {
+            v,
+            sin_cone,
+            cos_cone: (1.0 - sin_cone * sin_cone).max(0.0).sqrt(),
+        }
+    }
+
+    /// M of four lobes at one outgoing inclination given by its sine and cosine, through
+    /// [`LongitudinalLanes`] (the widths and M in SIMD lanes), for a model whose widths change
+    /// from call to call.
+    #[inline]
+    pub fn eval_four(lobes: [ConeLobe; 4], sin_o: f64, cos_o: f64) -> [f64; 4] {
+        LongitudinalLanes::new(lobes.map(|l| l.v)).eval(
+            lobes.map(|l| l.sin_cone).into(),
+            lobes.map(|l| l.cos_cone).into(),
+            sin_o,
+            cos_o,
+        )
+    }
+}
+
+impl From<LongitudinalLobe> for ConeLobe {
+    #[inline]
+    fn from(lobe: LongitudinalLobe) -> Self {
+        let (sin_cone, cos_cone) = sin_cos_quadrant(lobe.theta_cone);
+        Self {
+            v: lobe.v,
+            sin_cone,
+            cos_cone,
+        }
     }
 }
 
@@ -139,6 +187,108 @@ impl LongitudinalWidth {
     }
 }
 
+/// Four longitudinal lobes evaluated together, one per lane: the models' M_p for every lobe
+/// at one θ_o ([`LongitudinalLanes::eval`]). The fast twin of four
+/// [`LongitudinalWidth::eval`]s, with no logarithm, no table and no branch, so the compiler
+/// keeps the lanes in SIMD registers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LongitudinalLanes {
+    inv_v: f64x4,
+    /// csch(1/v) e^{1/v} / 2v = 1 / (v (1 − e^{−2/v})), M's normalisation without the
+    /// e^{−1/v} the exponent carries.
+    norm: f64x4,
+}
+
+impl LongitudinalLanes {
+    /// The lanes for four variances (each at least [`MIN_VARIANCE`]), found once where the
+    /// widths are fixed and per call where they are not.
+    #[inline(always)]
+    pub fn new(v: [f64; 4]) -> Self {
+        let inv_v = f64x4::ONE / f64x4::new(v).fast_max(f64x4::splat(MIN_VARIANCE));
+        let tail = exp_lanes(inv_v * f64x4::splat(-2.0));
+        Self {
+            inv_v,
+            norm: inv_v / (f64x4::ONE - tail),
+        }
+    }
+
+    /// M of each lane's lobe, for cones and one outgoing inclination given by their sines
+    /// and cosines (d'Eon et al. 2014 eq. 5): M = e^{(sin θ_c sin θ_o − 1)/v} I0(x) / (v (1 −
+    /// e^{−2/v})), x = |cos θ_c cos θ_o| / v. Below x = 3.75 I0 by Abramowitz & Stegun 1964
+    /// eq. 9.8.1, above it e^x joins the exponent and e^{−x} I0(x) by eq. 9.8.2; every lane
+    /// finds both and keeps one. The exponent is at most a rounding above 0 (sin θ_c sin θ_o +
+    /// |cos θ_c cos θ_o| ≤ 1), so it never overflows. Within 1e-6 relative of
+    /// [`LongitudinalWidth::eval_log_space`] (`lanes_match_the_log_space_reference`).
+    #[inline(always)]
+    pub fn eval(&self, sin_cone: f64x4, cos_cone: f64x4, sin_o: f64, cos_o: f64) -> [f64; 4] {
+        let split = f64x4::splat(I0_AS_SPLIT);
+        let x = (cos_cone * f64x4::splat(cos_o)).abs() * self.inv_v;
+        let low = x.cmp_lt(split);
+        let e = sin_cone.mul_add(f64x4::splat(sin_o), f64x4::splat(-1.0)) * self.inv_v;
+        let exponent = low.blend(e, e + x);
+        let i0 = low.blend(
+            i0_as_lanes(x.fast_min(split)),
+            i0_scaled_as_lanes(x.fast_max(split)),
+        );
+        (exp_lanes(exponent) * i0 * self.norm).to_array()
+    }
+}
+
+/// Four lobes of fixed widths whose cones sit at −θ_i + shift_p: the longitudinal part of
+/// d'Eon et al. 2011 and of Chiang et al. 2016. Each cone comes from sin θ_i and cos θ_i by
+/// the angle-sum identities; [`ShiftedCones::eval`] gives every M_p at once through
+/// [`LongitudinalLanes`], [`ShiftedCones::sample_sin`] draws from one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShiftedCones {
+    widths: [LongitudinalWidth; 4],
+    shift: [f64; 4],
+    sin_shift: f64x4,
+    cos_shift: f64x4,
+    lanes: LongitudinalLanes,
+}
+
+impl ShiftedCones {
+    /// Lobes of variances `v` with cones at −θ_i + `shift`.
+    pub fn new(v: [f64; 4], shift: [f64; 4]) -> Self {
+        Self {
+            widths: v.map(LongitudinalWidth::new),
+            shift,
+            sin_shift: shift.map(f64::sin).into(),
+            cos_shift: shift.map(f64::cos).into(),
+            lanes: LongitudinalLanes::new(v),
+        }
+    }
+
+    /// Lobe p's variance.
+    pub fn variance(&self, p: usize) -> f64 {
+        self.widths[p].v
+    }
+
+    /// Lobe p for light at θ_i.
+    pub fn lobe(&self, p: usize, theta_i: f64) -> LongitudinalLobe {
+        LongitudinalLobe::new(self.widths[p].v, -theta_i + self.shift[p])
+    }
+
+    /// M_p for every lobe, from sin θ_i, cos θ_i, sin θ_o and cos θ_o.
+    #[inline(always)]
+    pub fn eval(&self, sin_i: f64, cos_i: f64, sin_o: f64, cos_o: f64) -> [f64; 4] {
+        let (si, ci) = (f64x4::splat(sin_i), f64x4::splat(cos_i));
+        let sin_cone = ci * self.sin_shift - si * self.cos_shift;
+        let cos_cone = ci * self.cos_shift + si * self.sin_shift;
+        self.lanes.eval(sin_cone, cos_cone, sin_o, cos_o)
+    }
+
+    /// sin θ_o drawn from lobe p's M cos θ_o ([`LongitudinalWidth::sample_sin`]).
+    #[inline]
+    pub fn sample_sin(&self, p: usize, sin_i: f64, cos_i: f64, u1: f64, u2: f64) -> f64 {
+        let (ss, cs) = (
+            self.sin_shift.as_array_ref()[p],
+            self.cos_shift.as_array_ref()[p],
+        );
+        self.widths[p].sample_sin(-sin_i * cs + cos_i * ss, cos_i * cs + sin_i * ss, u1, u2)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -179,6 +329,39 @@ mod tests {
             }
         }
         eprintln!("M without logarithms vs log space: relative error ≤ {worst:.2e}");
+        assert!(worst < 1e-6, "{worst:e}");
+    }
+
+    #[test]
+    fn lanes_match_the_log_space_reference() {
+        // fast_m_matches_the_log_space_reference's grid, four widths a call.
+        let widths = [
+            1e-9, 1e-4, 1e-3, 0.0085, 0.027, 0.09, 0.18, 0.4, 1.0, 10.0, 30.0, 0.05,
+        ];
+        let mut worst: f64 = 0.0;
+        for v in widths.chunks(4) {
+            let v: [f64; 4] = v.try_into().unwrap();
+            let lanes = LongitudinalLanes::new(v);
+            for i in 0..=60 {
+                let cone: [f64; 4] =
+                    std::array::from_fn(|p| -1.55 + 3.1 * ((i + 17 * p) % 61) as f64 / 60.0);
+                let (sc, cc) = (cone.map(f64::sin), cone.map(f64::cos));
+                for o in 0..=200 {
+                    let (so, co) = (0.9999 * PI * (o as f64 / 200.0 - 0.5)).sin_cos();
+                    let got = lanes.eval(sc.into(), cc.into(), so, co);
+                    for p in 0..4 {
+                        let want =
+                            LongitudinalWidth::new(v[p]).eval_log_space(sc[p], cc[p], so, co);
+                        if want > 1e-250 {
+                            worst = worst.max(((got[p] - want) / want).abs());
+                        } else {
+                            assert!(got[p] <= 1e-249, "v {}: {} vs {want}", v[p], got[p]);
+                        }
+                    }
+                }
+            }
+        }
+        eprintln!("M in lanes vs log space: relative error ≤ {worst:.2e}");
         assert!(worst < 1e-6, "{worst:e}");
     }
 

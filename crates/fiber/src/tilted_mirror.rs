@@ -15,7 +15,7 @@
 //! is its reference twin, the plain bisection the model first used.
 
 use crate::frame::{FiberAngles, wrap_pi};
-use crate::special::{asin_fast, sin_cos_quadrant};
+use crate::special::{asin_fast, atan2_fast, sin_cos_quadrant};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The mirror of ω_i = (sin θ_i, cos θ_i, 0) (φ_i = 0) at offset h about the scale normal tilted
@@ -36,6 +36,8 @@ pub struct MirrorOffset {
     pub dh_dphi: f64,
     /// The mirror's inclination θ_o: R's cone.
     pub theta: f64,
+    /// sin θ_o, which an evaluation of R's lobe takes without the angle.
+    pub sin_theta: f64,
 }
 
 /// The offset h whose tilted mirror leaves at azimuth φ (unwrapped, as [`tilted_mirror`] gives
@@ -81,10 +83,12 @@ pub fn tilted_mirror_offset_bisection(theta_i: f64, alpha: f64, phi: f64) -> Opt
     let e = 1e-6;
     let slope = (at((gamma + e).min(FRAC_PI_2)) - at((gamma - e).max(-FRAC_PI_2)))
         / ((gamma + e).min(FRAC_PI_2) - (gamma - e).max(-FRAC_PI_2));
+    let theta = tilted_mirror(theta_i, alpha, gamma.sin()).theta;
     (slope < 0.0).then(|| MirrorOffset {
         h: gamma.sin(),
         dh_dphi: gamma.cos() / -slope,
-        theta: tilted_mirror(theta_i, alpha, gamma.sin()).theta,
+        theta,
+        sin_theta: theta.sin(),
     })
 }
 
@@ -168,7 +172,7 @@ impl Mirror {
         let bravais = -2.0 * gamma;
         MirrorAt {
             sin_theta: r.x,
-            phi: bravais + wrap_pi(r.z.atan2(r.y) - bravais),
+            phi: bravais + wrap_pi(atan2_fast(r.z, r.y) - bravais),
             slope: (r.y * r.dz - r.z * r.dy) / (r.y * r.y + r.z * r.z),
         }
     }
@@ -178,7 +182,7 @@ impl Mirror {
     /// what [`Mirror::at`] gives at both ends (the test `reach_is_the_mirror_at_the_edges`).
     fn reach(&self) -> Reach {
         let sin_2alpha = 2.0 * self.sin_alpha * self.cos_alpha;
-        let delta = (self.sin_theta * sin_2alpha).atan2(self.cos_theta);
+        let delta = atan2_fast(self.sin_theta * sin_2alpha, self.cos_theta);
         Reach {
             least: -PI + delta,
             greatest: PI - delta,
@@ -267,10 +271,12 @@ impl Mirror {
     fn finish(&self, gamma: f64, phi: f64) -> Option<MirrorOffset> {
         let at = self.at(gamma);
         let (h, cos_gamma) = sin_cos_quadrant(gamma);
+        let sin_theta = at.sin_theta.clamp(-1.0, 1.0);
         (at.slope < 0.0 && (at.phi - phi).abs() < 1e-9).then(|| MirrorOffset {
             h,
             dh_dphi: cos_gamma / -at.slope,
-            theta: asin_fast(at.sin_theta.clamp(-1.0, 1.0)),
+            theta: asin_fast(sin_theta),
+            sin_theta,
         })
     }
 }
@@ -306,6 +312,7 @@ mod tests {
                 h: back,
                 dh_dphi: dh,
                 theta: cone,
+                ..
             } = tilted_mirror_offset(theta, alpha, phi).unwrap();
             assert!((back - h).abs() < 1e-9, "h {h}: {back}");
             assert!((cone - tilted_mirror(theta, alpha, h).theta).abs() < 1e-9);

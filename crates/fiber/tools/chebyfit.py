@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The polynomial coefficients of crates/fiber/src/special.rs's sin_cos_quadrant and asin_fast:
+"""The polynomial coefficients of crates/fiber/src/special.rs's sin_cos_quadrant, asin_fast and atan2_fast:
 near-minimax Chebyshev fits (mpmath.chebyfit, 50 digits), lowest degree first, printed as
 Rust literals. Run: python3 crates/fiber/tools/chebyfit.py (needs mpmath)."""
 import mpmath as mp
@@ -28,7 +28,16 @@ def asin_rest(t):
     return (mp.asin(s) - s) / (t * s)
 
 
+def atan_rest(t):
+    # (atan √t − √t) / (t √t), so that atan x = x + x t g(t) with t = x².
+    if t == 0:
+        return mp.mpf(-1) / 3
+    s = mp.sqrt(t)
+    return (mp.atan(s) - s) / (t * s)
+
+
 quarter_turn_sq = (mp.pi / 2) ** 2
 fit("SIN_FIT", sinc, 0, quarter_turn_sq, 9)
 fit("COS_FIT", lambda t: mp.cos(mp.sqrt(t)), 0, quarter_turn_sq, 9)
 fit("ASIN_FIT", asin_rest, 0, mp.mpf(1) / 4, 12)
+fit("ATAN_FIT", atan_rest, 0, mp.tan(mp.pi / 12) ** 2, 9)

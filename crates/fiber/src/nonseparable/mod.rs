@@ -48,7 +48,7 @@ use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::deon2011::{DEon2011, sample_phi, weighted_sample};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues};
-use crate::longitudinal::LongitudinalLobe;
+use crate::longitudinal::{ConeLobe, LongitudinalLobe};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::nusselt;
 use crate::params::{FiberParams, ParamError};
@@ -226,6 +226,30 @@ impl NonSeparable {
         }
     }
 
+    /// [`Self::longitudinal_at`] with the cone as its sine and cosine, for evaluation: where
+    /// the sine is what the model finds (the lobe table's exit for tilted scales, R's mirror),
+    /// no arcsine and no sine is taken.
+    #[inline]
+    fn cone_lobe(
+        &self,
+        p: usize,
+        theta_i: f64,
+        phi: f64,
+        mirrors: &[Option<MirrorOffset>; 3],
+    ) -> ConeLobe {
+        let tilted = self.scales == Scales::Tilted;
+        let exit = |[x, w]: lobe_table::Shape| ConeLobe::from_sin(shape_variance(theta_i, w), x);
+        match (&self.lobes, p) {
+            (Some(table), 1) if tilted => exit(table.tt(theta_i, phi)),
+            (Some(table), 2) if tilted => exit(table.trt(theta_i)),
+            (_, 0) => match mirrors.iter().flatten().next() {
+                Some(m) => ConeLobe::from_sin(mirror_variance(self.params.beta, m), m.sin_theta),
+                None => self.longitudinal_at(p, theta_i, phi, mirrors).into(),
+            },
+            _ => self.longitudinal_at(p, theta_i, phi, mirrors).into(),
+        }
+    }
+
     /// TT's (p = 1) or TRT's lobe shape as the lobe table holds it ([`lobe_table`]): the
     /// Nusselt exit's sine before any clamp, at TT's offset for φ or TRT's h = 0, and √v cos θ_d.
     fn lobe_shape(&self, p: usize, theta_i: f64, phi: f64) -> lobe_table::Shape {
@@ -256,8 +280,7 @@ impl NonSeparable {
             Scales::Tilted => asin_fast(x.clamp(-1.0, 1.0)),
             Scales::Paper => cones::pole_where_beyond(theta_i, x),
         };
-        let cos_d = cos_quadrant(theta_i).abs().max(1e-6);
-        LongitudinalLobe::new((w / cos_d).powi(2), cone)
+        LongitudinalLobe::new(shape_variance(theta_i, w), cone)
     }
 
     /// The offset h whose TT path leaves at azimuth φ for light at θ_i ([`TtOffsets`]).
@@ -286,7 +309,7 @@ impl NonSeparable {
             // The exact mirror at the offset that reflects to φ (the first of φ, φ − 2π,
             // φ + 2π that one reaches); v_R = 2β²(1 − h²) (eq. 6).
             0 => match mirrors.iter().flatten().next() {
-                Some(m) => LongitudinalLobe::new(2.0 * beta * beta * (1.0 - m.h * m.h), m.theta),
+                Some(m) => LongitudinalLobe::new(mirror_variance(beta, m), m.theta),
                 None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
             },
             1 => {
@@ -341,11 +364,8 @@ impl NonSeparable {
         let mirrors = self.mirrors(wi.theta, phi);
         let (sin_o, cos_o) = sin_cos_quadrant(wo.theta);
         // Written out: `array::from_fn`'s closure can stay a call per lobe.
-        let m_p = |p| {
-            self.longitudinal_at(p, wi.theta, phi, &mirrors)
-                .eval_sin_cos(sin_o, cos_o)
-        };
-        let m = [m_p(0), m_p(1), m_p(2), m_p(3)];
+        let lobe = |p| self.cone_lobe(p, wi.theta, phi, &mirrors);
+        let m = ConeLobe::eval_four([lobe(0), lobe(1), lobe(2), lobe(3)], sin_o, cos_o);
         Pair {
             theta_d,
             phi,
@@ -401,6 +421,19 @@ impl NonSeparable {
         }
         (theta_o, phi, self.iterations)
     }
+}
+
+/// v of a lobe table shape's √v cos θ_d, with θ_d = −θ_i.
+#[inline]
+fn shape_variance(theta_i: f64, w: f64) -> f64 {
+    let cos_d = cos_quadrant(theta_i).abs().max(1e-6);
+    (w / cos_d).powi(2)
+}
+
+/// R's variance at the offset of its mirror, v_R = 2β²(1 − h²) (eq. 6).
+#[inline]
+fn mirror_variance(beta: f64, m: &MirrorOffset) -> f64 {
+    2.0 * beta * beta * (1.0 - m.h * m.h)
 }
 
 impl FiberModel for NonSeparable {
