@@ -51,7 +51,7 @@ use crate::longitudinal::{LongitudinalLobe, ShiftedCones};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::ranges;
-use crate::special::{GaussLegendre, asin_fast, exp_fast, sin_cos_quadrant};
+use crate::special::{GaussLegendre, asin_fast, exp_fast, ln_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -298,7 +298,7 @@ pub fn sample_trimmed_logistic(u: f64, s: f64) -> f64 {
     let lo = logistic_cdf(-PI, s);
     let k = logistic_cdf(PI, s) - lo;
     let c = (u * k + lo).clamp(1e-300, 1.0 - 1e-16);
-    (-s * (1.0 / c - 1.0).ln()).clamp(-PI, PI)
+    (-s * ln_fast(1.0 / c - 1.0)).clamp(-PI, PI)
 }
 
 /// Lobe choice ∝ the channel mean of A_p; R alone when nothing is left.

@@ -9,7 +9,7 @@
 
 use crate::special::{
     I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, exp_lanes, i0_as, i0_as_lanes, i0_scaled_as,
-    i0_scaled_as_lanes, log_i0, log1m_exp_neg, sin_cos_quadrant,
+    i0_scaled_as_lanes, ln_fast, log_i0, log1m_exp_neg, sin_cos_quadrant,
 };
 use std::f64::consts::PI;
 use wide::{CmpLt, f64x4};
@@ -49,8 +49,8 @@ impl LongitudinalLobe {
     /// θ_o distributed with density M(θ_o) cos θ_o, from two uniform numbers (d'Eon 2013): the
     /// cosine w of the angle to the cone's central direction, then an azimuth ψ about it.
     pub fn sample(&self, u1: f64, u2: f64) -> f64 {
-        let (sc, cc) = self.theta_cone.sin_cos();
-        asin_fast(sample_sin_o(self.v, (-2.0 / self.v).exp(), sc, cc, u1, u2))
+        let (sc, cc) = sin_cos_quadrant(self.theta_cone);
+        asin_fast(sample_sin_o(self.v, exp_fast(-2.0 / self.v), sc, cc, u1, u2))
     }
 }
 
@@ -106,7 +106,7 @@ impl From<LongitudinalLobe> for ConeLobe {
 /// √(1 − w²) cos(2πu₂) cos θ_c, with cos(2πu₂) = 1 − 2 sin²(πu₂) from the quadrant cosine.
 #[inline]
 fn sample_sin_o(v: f64, exp_neg_2_over_v: f64, sc: f64, cc: f64, u1: f64, u2: f64) -> f64 {
-    let w = 1.0 + v * (u1 + (1.0 - u1) * exp_neg_2_over_v).ln();
+    let w = 1.0 + v * ln_fast(u1 + (1.0 - u1) * exp_neg_2_over_v);
     let w = w.clamp(-1.0, 1.0);
     let s = (1.0 - w * w).max(0.0).sqrt();
     let sin_pi_u2 = cos_quadrant(PI * (u2 - 0.5));
@@ -155,7 +155,7 @@ impl LongitudinalWidth {
     pub fn sample_sin(&self, sin_cone: f64, cos_cone: f64, u1: f64, u2: f64) -> f64 {
         let exp_neg_2_over_v = self
             .exp_neg_2_over_v
-            .unwrap_or_else(|| (-2.0 * self.inv_v).exp());
+            .unwrap_or_else(|| exp_fast(-2.0 * self.inv_v));
         sample_sin_o(self.v, exp_neg_2_over_v, sin_cone, cos_cone, u1, u2)
     }
 

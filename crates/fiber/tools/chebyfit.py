@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The polynomial coefficients of crates/fiber/src/special.rs's sin_cos_quadrant, asin_fast and atan2_fast:
-near-minimax Chebyshev fits (mpmath.chebyfit, 50 digits), lowest degree first, printed as
+"""The polynomial coefficients of crates/fiber/src/special.rs's sin_cos_quadrant, asin_fast,
+atan2_fast and ln_fast: near-minimax Chebyshev fits (mpmath.chebyfit, 50 digits), lowest degree first, printed as
 Rust literals. Run: python3 crates/fiber/tools/chebyfit.py (needs mpmath)."""
 import mpmath as mp
 
@@ -36,8 +36,17 @@ def atan_rest(t):
     return (mp.atan(s) - s) / (t * s)
 
 
+def atanh_rest(t):
+    # (atanh √t − √t) / (t √t), so that ln m = 2 atanh f = 2f + 2f t g(t) with t = f².
+    if t == 0:
+        return mp.mpf(1) / 3
+    s = mp.sqrt(t)
+    return (mp.atanh(s) - s) / (t * s)
+
+
 quarter_turn_sq = (mp.pi / 2) ** 2
 fit("SIN_FIT", sinc, 0, quarter_turn_sq, 9)
 fit("COS_FIT", lambda t: mp.cos(mp.sqrt(t)), 0, quarter_turn_sq, 9)
 fit("ASIN_FIT", asin_rest, 0, mp.mpf(1) / 4, 12)
 fit("ATAN_FIT", atan_rest, 0, mp.tan(mp.pi / 12) ** 2, 9)
+fit("LN_FIT", atanh_rest, 0, ((mp.sqrt(2) - 1) / (mp.sqrt(2) + 1)) ** 2, 7)
