@@ -1,7 +1,7 @@
 //! The Beckmann microfacet distribution and its Smith shadowing-masking term (Walter et al. 2007,
 //! "Microfacet models for refraction through rough surfaces", §5.1), with roughness β.
 
-use crate::ln::ln;
+use cuticle_fiber::special::ln_fast;
 use cuticle_fiber::special::erfc_rel_1_2e7;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -20,7 +20,7 @@ pub fn distribution(cos_m: f64, beta: f64) -> f64 {
 /// eqs. 28–29: tan²θ_m = −β² ln(1 − ξ₁), φ_m uniform). φ_m comes from `disk`, a point uniform in
 /// the unit disk: its doubled angle, cos = (x² − y²)/r², sin = 2xy/r², is uniform, with no trig.
 pub fn sample_normal(beta: f64, xi1: f64, disk: DVec2) -> DVec3 {
-    let tan2 = -beta * beta * ln(1.0 - xi1);
+    let tan2 = -beta * beta * ln_fast(1.0 - xi1);
     let r2 = disk.length_squared();
     // One reciprocal serves both cos θ_m = 1/√(1 + tan²) and the azimuth's 1/r².
     let inv = 1.0 / ((1.0 + tan2).sqrt() * r2);

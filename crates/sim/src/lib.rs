@@ -32,7 +32,6 @@ pub mod cylinder;
 pub mod dielectric;
 pub mod grid;
 mod interface;
-mod ln;
 pub mod params;
 pub mod path;
 mod poly;
