@@ -133,6 +133,23 @@ impl DEon2011 {
         }
     }
 
+    /// [`DEon2011::azimuthal_beyond_r`] under both weightings, (attenuation, selection): the
+    /// table's texels read once.
+    pub(crate) fn azimuthal_beyond_r_both(
+        &self,
+        theta_i: f64,
+        theta_d: f64,
+        phi: f64,
+    ) -> ([DVec3; 4], [DVec3; 4]) {
+        match &self.table {
+            Some(t) => t.eval_beyond_r_both(theta_i, theta_d, phi),
+            None => (
+                self.azimuthal_beyond_r(theta_i, theta_d, phi, Weighting::Attenuation),
+                self.azimuthal_beyond_r(theta_i, theta_d, phi, Weighting::Selection),
+            ),
+        }
+    }
+
     /// Σ_p M_p N_p per lobe; the p ≥ 4 remainder shares TRRT's longitudinal lobe.
     fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
         let theta_d = 0.5 * (wo.theta - wi.theta);

@@ -50,7 +50,14 @@ impl LongitudinalLobe {
     /// cosine w of the angle to the cone's central direction, then an azimuth ψ about it.
     pub fn sample(&self, u1: f64, u2: f64) -> f64 {
         let (sc, cc) = sin_cos_quadrant(self.theta_cone);
-        asin_fast(sample_sin_o(self.v, exp_fast(-2.0 / self.v), sc, cc, u1, u2))
+        asin_fast(sample_sin_o(
+            self.v,
+            exp_fast(-2.0 / self.v),
+            sc,
+            cc,
+            u1,
+            u2,
+        ))
     }
 }
 

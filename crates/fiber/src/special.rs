@@ -867,7 +867,11 @@ mod tests {
         // Near 1, where ln x is small, relative to it.
         let mut near_one: f64 = 0.0;
         for k in 1..=100_000 {
-            for x in [1.0 + k as f64 * 3e-9, 1.0 - k as f64 * 3e-9, 1.0 + k as f64 * 4e-6] {
+            for x in [
+                1.0 + k as f64 * 3e-9,
+                1.0 - k as f64 * 3e-9,
+                1.0 + k as f64 * 4e-6,
+            ] {
                 near_one = near_one.max((ln_fast(x) / x.ln() - 1.0).abs());
             }
         }

@@ -176,8 +176,28 @@ impl AzimuthalTable {
             Weighting::Attenuation => v.truncate().as_dvec3(),
             Weighting::Selection => DVec3::splat(v.w as f64),
         };
+        self.beyond_r_taps(theta_i, theta_d, phi).map(pick)
+    }
+
+    /// [`AzimuthalTable::eval_beyond_r`] under both weightings from one read of the texels:
+    /// (attenuation, selection).
+    pub fn eval_beyond_r_both(
+        &self,
+        theta_i: f64,
+        theta_d: f64,
+        phi: f64,
+    ) -> ([DVec3; 4], [DVec3; 4]) {
+        let taps = self.beyond_r_taps(theta_i, theta_d, phi);
+        (
+            taps.map(|v| v.truncate().as_dvec3()),
+            taps.map(|v| DVec3::splat(v.w as f64)),
+        )
+    }
+
+    /// The taps of TT, TRT, TRRT and the remainder at (θ_i, θ_d, φ).
+    #[inline]
+    fn beyond_r_taps(&self, theta_i: f64, theta_d: f64, phi: f64) -> [Vec4; 4] {
         self.taps(self.point(theta_i, self.eta_ratio(theta_d), phi))
-            .map(pick)
     }
 
     /// η/η′(θ_d), the table's θ_d coordinate, from θ_d.

@@ -1,8 +1,8 @@
 //! The Beckmann microfacet distribution and its Smith shadowing-masking term (Walter et al. 2007,
 //! "Microfacet models for refraction through rough surfaces", §5.1), with roughness β.
 
-use cuticle_fiber::special::ln_fast;
 use cuticle_fiber::special::erfc_rel_1_2e7;
+use cuticle_fiber::special::ln_fast;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 

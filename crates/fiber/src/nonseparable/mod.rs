@@ -335,8 +335,22 @@ impl NonSeparable {
 
     /// N_p for every lobe, R's from its solved offsets where the scales tilt it.
     fn azimuthal_at(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> [DVec3; 5] {
+        let [tt, trt, trrt, rest] =
+            self.deon
+                .azimuthal_beyond_r(theta_i, pair.theta_d, pair.phi, weighting);
+        [
+            self.azimuthal_r(pair, theta_i, weighting),
+            tt,
+            trt,
+            trrt,
+            rest,
+        ]
+    }
+
+    /// N_R, from its solved offsets where the scales tilt it.
+    fn azimuthal_r(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> DVec3 {
         let az = self.azimuthal();
-        let r = if az.scale_tilt != 0.0 {
+        if az.scale_tilt != 0.0 {
             match (&self.selection, weighting) {
                 // R's share of the offsets that reach φ, as the sampler chooses it.
                 (Some(table), Weighting::Selection) => DVec3::splat(
@@ -350,11 +364,7 @@ impl NonSeparable {
             }
         } else {
             az.eval(0, theta_i, pair.theta_d, pair.phi, weighting)
-        };
-        let [tt, trt, trrt, rest] =
-            self.deon
-                .azimuthal_beyond_r(theta_i, pair.theta_d, pair.phi, weighting);
-        [r, tt, trt, trrt, rest]
+        }
     }
 
     /// What one (ω_i, ω_o) pair needs under either weighting, found once.
@@ -383,15 +393,15 @@ impl NonSeparable {
     /// same arithmetic as [`FiberModel::eval`] and [`FiberModel::pdf`], so identical results.
     fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (LobeValues, f64) {
         let pair = self.pair(wi, wo);
-        let s = LobeValues::separable(
-            pair.m,
-            self.azimuthal_at(&pair, wi.theta, Weighting::Attenuation),
-        );
-        let pdf = LobeValues::separable(
-            pair.m,
-            self.azimuthal_at(&pair, wi.theta, Weighting::Selection),
-        );
-        (s, pdf.total().x)
+        let (s, sel) = self
+            .deon
+            .azimuthal_beyond_r_both(wi.theta, pair.theta_d, pair.phi);
+        let lobes = |weighting, [tt, trt, trrt, rest]: [DVec3; 4]| {
+            let r = self.azimuthal_r(&pair, wi.theta, weighting);
+            LobeValues::separable(pair.m, [r, tt, trt, trrt, rest])
+        };
+        let pdf = lobes(Weighting::Selection, sel).total().x;
+        (lobes(Weighting::Attenuation, s), pdf)
     }
 
     /// θ_o and φ for TT or TRT by the fixed-point iteration of §3: guess θ_o = −θ_i, then
