@@ -34,7 +34,6 @@ pub mod grid;
 mod interface;
 pub mod params;
 pub mod path;
-mod poly;
 pub mod record;
 mod rng;
 pub mod scale;
