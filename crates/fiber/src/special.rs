@@ -416,7 +416,7 @@ pub fn i0_scaled_as_lanes(x: f64x4) -> f64x4 {
 }
 
 /// A polynomial of degree up to 11 in each of four lanes, lowest coefficient first (zeros
-/// above the degree), by Estrin's scheme: pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then
+/// above the degree), by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then
 /// in x⁴ and x⁸, four levels where Horner's chain is eleven multiply-adds long (the lanes'
 /// latency, not their count, bounds the models' M).
 #[inline(always)]
