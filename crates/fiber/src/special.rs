@@ -416,9 +416,9 @@ pub fn i0_scaled_as_lanes(x: f64x4) -> f64x4 {
 }
 
 /// A polynomial of degree up to 11 in each of four lanes, lowest coefficient first (zeros
-/// above the degree), by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then
-/// in x⁴ and x⁸, four levels where Horner's chain is eleven multiply-adds long (the lanes'
-/// latency, not their count, bounds the models' M).
+/// above the degree), by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of
+/// those in x², then in x⁴ and x⁸, four levels where Horner's chain is eleven multiply-adds
+/// long (the lanes' latency, not their count, bounds the models' M).
 #[inline(always)]
 fn estrin_lanes(c: &[f64; 12], x: f64x4) -> f64x4 {
     let pair = |i: usize| f64x4::splat(c[i + 1]).mul_add(x, f64x4::splat(c[i]));
