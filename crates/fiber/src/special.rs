@@ -1,6 +1,9 @@
 //! Special functions the models and the simulator share, each with its accuracy in its name or
 //! documentation: log I0 (stable for any argument) and I0 without a logarithm, Gauss–Legendre rules,
-//! the standard normal density and quantile, erfc to full precision and to 1.2e-7.
+//! the standard normal density and quantile, erfc to full precision and to 1.2e-7, and the
+//! elementary functions without a library call (`sin_cos_quadrant`, `asin_fast`, `atan2_fast`,
+//! `exp_fast`, `ln_fast`), with four-lane SIMD twins for the models' M (`exp_lanes`,
+//! `i0_as_lanes`), each tested against the library's.
 
 use bytemuck::cast;
 use std::f64::consts::PI;
