@@ -119,6 +119,9 @@ struct MirrorAt {
     phi: f64,
     /// dφ/dγ.
     slope: f64,
+    /// sin γ and cos γ: the offset h and the Jacobian's cos γ.
+    sin_gamma: f64,
+    cos_gamma: f64,
 }
 
 /// The mirror direction at one γ: x = sin θ_o, and y, z across the fiber with dy/dγ, dz/dγ.
@@ -129,6 +132,9 @@ struct Reflected {
     z: f64,
     dy: f64,
     dz: f64,
+    /// sin γ and cos γ, found on the way.
+    sin_gamma: f64,
+    cos_gamma: f64,
 }
 
 /// The azimuths the mirror reaches, at γ = π/2 (least) and −π/2 (greatest).
@@ -164,6 +170,8 @@ impl Mirror {
             z: -2.0 * d * ca * sg,
             dy: 2.0 * ca * (dd * cg - d * sg),
             dz: -2.0 * ca * (dd * sg + d * cg),
+            sin_gamma: sg,
+            cos_gamma: cg,
         }
     }
 
@@ -175,6 +183,8 @@ impl Mirror {
             sin_theta: r.x,
             phi: bravais + wrap_pi(atan2_fast(r.z, r.y) - bravais),
             slope: (r.y * r.dz - r.z * r.dy) / (r.y * r.y + r.z * r.z),
+            sin_gamma: r.sin_gamma,
+            cos_gamma: r.cos_gamma,
         }
     }
 
@@ -271,7 +281,7 @@ impl Mirror {
     /// light through.
     fn finish(&self, gamma: f64, phi: f64) -> Option<MirrorOffset> {
         let at = self.at(gamma);
-        let (h, cos_gamma) = sin_cos_quadrant(gamma);
+        let (h, cos_gamma) = (at.sin_gamma, at.cos_gamma);
         let sin_theta = at.sin_theta.clamp(-1.0, 1.0);
         (at.slope < 0.0 && (at.phi - phi).abs() < 1e-9).then(|| MirrorOffset {
             h,
