@@ -172,9 +172,9 @@ impl LongitudinalWidth {
     /// eq. 9.8.1–9.8.2 and the exponential by [`exp_fast`], so no logarithm is taken and no long
     /// series summed. Within 1e-6
     /// relative of [`LongitudinalWidth::eval_log_space`], the reference twin
-    /// (`fast_m_matches_the_log_space_reference`). Always inlined: the models call it once
-    /// per lobe between other arithmetic, and as a call it made the caller spill every live
-    /// SSE register around each of the four.
+    /// (`fast_m_matches_the_log_space_reference`). One lobe at a time, for a single lobe's M
+    /// ([`LongitudinalLobe::eval`]); the models evaluate their four lobes together through
+    /// [`LongitudinalLanes`].
     #[inline(always)]
     pub fn eval(&self, sin_cone: f64, cos_cone: f64, sin_o: f64, cos_o: f64) -> f64 {
         let x = (cos_cone * cos_o).abs() * self.inv_v;
