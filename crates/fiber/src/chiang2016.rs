@@ -12,7 +12,7 @@
 //!
 //!   S_h(ω_i, ω_o) = Σ_p M_p(θ_o) A_p(θ_i, h) N_p(φ; h), φ = φ_o − φ_i,
 //!
-//! - M_p the von Mises–Fisher marginal of d'Eon et al. 2011 ([`LongitudinalWidth`]) about the
+//! - M_p the von Mises–Fisher marginal of d'Eon et al. 2011 ([`crate::longitudinal::LongitudinalWidth`]) about the
 //!   cone −θ_i + 2α (R), −θ_i − α (TT), −θ_i − 4α (TRT), −θ_i (remainder), with variances
 //!   v_R = (0.726 β_m + 0.812 β_m² + 3.7 β_m²⁰)², v_TT = v_R/4, v_TRT = v_rest = 4 v_R
 //!   (Chiang et al. 2016 eq. 7, §4.1's tilts). pbrt-v4 writes the tilt as a shift of the given
