@@ -128,7 +128,7 @@ fn table_build(c: &mut Criterion) {
     group.sample_size(10);
     group.bench_function("build_beta_0.3", |b| {
         b.iter_batched(
-            || az,
+            || az.clone(),
             |az| black_box(AzimuthalTable::build(&az)),
             BatchSize::SmallInput,
         )

@@ -11,11 +11,13 @@ use crate::attenuation::attenuation;
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
+use crate::rough_interface::RoughInterface;
 use crate::special::{GaussLegendre, normal_pdf_fast};
-use crate::tilted_attenuation::{tilted_attenuation, tilted_reflectance};
+use crate::tilted_attenuation::{Surface, tilted_attenuation, tilted_reflectance};
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror_offsets};
 use glam::DVec3;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// Nodes per panel of the composite rule.
 const PANEL_NODES: usize = 16;
@@ -95,7 +97,7 @@ pub enum Weighting {
 }
 
 /// The azimuthal part shared by d'Eon 2011 and the non-separable model.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct AzimuthalScattering {
     pub eta: f64,
     pub mu_a: DVec3,
@@ -104,6 +106,10 @@ pub struct AzimuthalScattering {
     /// The scale tilt α (radians) A(p, h) is taken at: 0 for d'Eon et al. 2011's smooth fiber,
     /// else through the tilted scales of [`crate::tilted_attenuation`].
     pub scale_tilt: f64,
+    /// The micro-normal means of the Fresnel factors A(p, h) is taken with, where the surface
+    /// counts as rough ([`AzimuthalScattering::with_rough_surface`]); `None` for d'Eon et al.
+    /// 2011's smooth Fresnel factor.
+    pub rough: Option<Arc<RoughInterface>>,
 }
 
 impl AzimuthalScattering {
@@ -115,6 +121,7 @@ impl AzimuthalScattering {
             mu_a,
             v_n: [0.0, 0.5 * b2, 2.0 * b2, 2.0 * b2],
             scale_tilt: 0.0,
+            rough: None,
         }
     }
 
@@ -124,22 +131,38 @@ impl AzimuthalScattering {
         self
     }
 
-    /// A(p, h) for all lobes at inclination θ_i.
-    pub fn attenuation(&self, theta_i: f64, h: f64) -> LobeValues {
-        if self.scale_tilt == 0.0 {
-            attenuation(theta_i, h, self.eta, self.mu_a)
-        } else {
-            tilted_attenuation(theta_i, h, self.eta, self.scale_tilt, self.mu_a).lobes
+    /// The same terms with A(p, h) taken with the micro-normal means of the Fresnel factors of
+    /// a surface of Beckmann roughness `beta` ([`crate::rough_interface`]), shared per (β, η).
+    pub fn with_rough_surface(mut self, beta: f64) -> Self {
+        self.rough = Some(RoughInterface::shared(beta, self.eta));
+        self
+    }
+
+    /// The surface A(p, h) meets.
+    pub fn surface(&self) -> Surface<'_> {
+        match &self.rough {
+            Some(rough) => Surface::rough(rough, self.scale_tilt),
+            None => Surface::smooth(self.eta, self.scale_tilt),
         }
     }
 
-    /// A(0, h) alone: the Fresnel factor, at the tilted micro-normal when there is a tilt.
+    /// A(p, h) for all lobes at inclination θ_i.
+    pub fn attenuation(&self, theta_i: f64, h: f64) -> LobeValues {
+        if self.scale_tilt == 0.0 && self.rough.is_none() {
+            attenuation(theta_i, h, self.eta, self.mu_a)
+        } else {
+            tilted_attenuation(theta_i, h, self.surface(), self.mu_a).lobes
+        }
+    }
+
+    /// A(0, h) alone: the Fresnel factor (its micro-normal mean when rough), at the tilted
+    /// micro-normal when there is a tilt.
     fn reflectance(&self, theta_i: f64, h: f64) -> f64 {
         let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
-        if self.scale_tilt == 0.0 {
+        if self.scale_tilt == 0.0 && self.rough.is_none() {
             fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta)
         } else {
-            tilted_reflectance(theta_i, h, self.eta, self.scale_tilt)
+            tilted_reflectance(theta_i, h, self.surface())
         }
     }
 

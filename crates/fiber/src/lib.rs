@@ -17,6 +17,7 @@
 pub mod absorption;
 pub mod attenuation;
 pub mod azimuthal;
+pub mod beckmann;
 pub mod bravais;
 pub mod chiang2016;
 pub mod cubic;
@@ -33,6 +34,7 @@ pub mod nonseparable;
 pub mod nusselt;
 pub mod params;
 pub mod ranges;
+pub mod rough_interface;
 pub mod special;
 pub mod table;
 #[cfg(test)]

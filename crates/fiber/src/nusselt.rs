@@ -12,6 +12,7 @@
 //! human hair tilting R toward the root), and tests that both agree.
 
 use crate::special::sin_cos_quadrant;
+use glam::DVec3;
 
 /// A direction (x, y) in Nusselt coordinates.
 pub type Nusselt = (f64, f64);
@@ -171,6 +172,19 @@ impl AtScale {
             return Err(Blocked::WrongSide);
         }
         Ok((x, y))
+    }
+
+    /// The arriving direction in the scale's frame: (x_m, y, cos), pointing away from the surface.
+    pub fn arriving(&self) -> DVec3 {
+        DVec3::new(self.x, self.y, self.cos)
+    }
+
+    /// A direction of travel `d` in the scale's frame (z toward the arriving side), sent on
+    /// through the scale (refracted, z < 0) or back (reflected, z > 0) by some micro-normal:
+    /// the Nusselt direction on its side of the macro surface, or `WrongSide`.
+    pub fn leaving(&self, d: DVec3) -> Result<Nusselt, Blocked> {
+        let through = d.z < 0.0;
+        self.in_macro_frame((d.x, d.y), d.z.abs(), self.inside != through)
     }
 
     /// The mirror direction (R[α] from outside, R′[α] from inside), on the arriving side.

@@ -101,7 +101,7 @@ impl AzimuthalTable {
             })
             .collect();
         Self {
-            az: *az,
+            az: az.clone(),
             phi_nodes,
             blurred,
             rest,

@@ -15,21 +15,39 @@
 //! or through the macro surface within a few dozen bounces: it is lost, not kept. With α = 0
 //! nothing is lost and A is d'Eon et al. 2011's exactly.
 //!
+//! A rough surface ([`Surface::rough`]) moves power from TT and TRT to the long paths at grazing
+//! incidence, where the exit comes near the critical angle and micro-normals a few degrees off
+//! totally reflect it. Three things carry it, each from [`crate::rough_interface`]:
+//! 1. at every event the micro-normal means ρ_r and ρ_t of the Fresnel factors replace F and
+//!    1 − F, and 1 − ρ_r − ρ_t is lost ([`TiltedAttenuation::shadowed`]);
+//! 2. the refraction into the fiber is followed along a coarse grid of micro-normals
+//!    ([`RoughInterface::refractions`]), so a part that entered steeper meets every exit
+//!    steeper, instead of along the mean direction alone;
+//! 3. an internal reflection leaves at the power-weighted mean angle of the micro-normals that
+//!    reflect ([`Albedo::reflected_cos`]): past the critical angle those are the ones that turn
+//!    the light toward the surface, which keeps it trapped, and each later exit's ρ is averaged
+//!    over the spread of directions the reflections so far add
+//!    ([`RoughInterface::inside_after`]).
+//!
+//! Otherwise a micro-normal's deflection is left to the lobes' widths. The result follows the
+//! simulation's per-lobe energies (`crates/validate/tests/tilted_energy.rs`).
+//!
 //! Absorption: each internal segment has the chord 2z/(1 − x²) of its own direction (x along
 //! the axis, z along the macro-normal), which is docs/conventions.md §8's 2 cos γ_t / cos θ_t
 //! when the scales are flat.
 
 use crate::attenuation::attenuation;
-use crate::fresnel::fresnel_dielectric;
 use crate::lobe::LobeValues;
 use crate::nusselt::{AtScale, Blocked, Nusselt, Tilt, propagate};
+use crate::rough_interface::{Albedo, RoughInterface};
 use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Internal segments after which a path still inside counts as lost (`cuticle-sim` cuts at 100
-/// surface events; a tilted fiber has lost trapped power long before either).
-pub const MAX_SEGMENTS: usize = 256;
+/// Internal segments after which a path still inside counts as lost, as `cuticle-sim` cuts its
+/// paths at 100 surface events (a tilted fiber has lost trapped power long before; a rough one
+/// traps some at grazing angles for longer).
+pub const MAX_SEGMENTS: usize = 100;
 /// Power (relative to what entered) below which a path is no longer followed.
 const NEGLIGIBLE: f64 = 1e-15;
 
@@ -44,6 +62,9 @@ pub struct TiltedAttenuation {
     pub wrong_side: DVec3,
     /// Still inside after [`MAX_SEGMENTS`].
     pub cut_off: DVec3,
+    /// Shadowed by a rough surface's micro-geometry, or sent to the wrong side by one of its
+    /// micro-normals (1 − ρ_r − ρ_t at each event).
+    pub shadowed: DVec3,
     /// The power whose first exit (the TT event) was totally internally reflected.
     pub tt_totally_reflected: DVec3,
 }
@@ -51,7 +72,7 @@ pub struct TiltedAttenuation {
 impl TiltedAttenuation {
     /// Everything the scales removed.
     pub fn lost(&self) -> DVec3 {
-        self.back_facing + self.wrong_side + self.cut_off
+        self.back_facing + self.wrong_side + self.cut_off + self.shadowed
     }
 
     fn lose(&mut self, why: Blocked, power: DVec3) {
@@ -70,58 +91,139 @@ pub fn incident(theta_i: f64, h: f64) -> Nusselt {
     (s, h.clamp(-1.0, 1.0) * c)
 }
 
-/// A(0, h): the Fresnel factor at the tilted micro-normal, 0 where the scale is met from behind
-/// or mirrors the ray into the fiber.
-pub fn tilted_reflectance(theta_i: f64, h: f64, eta: f64, alpha: f64) -> f64 {
-    let Ok(at) = AtScale::outside(alpha, incident(theta_i, h)) else {
+/// The fiber's surface as A(p, h) meets it: its index η, its scales' tilt α (the sign of
+/// `nusselt`: α > 0 raises the R cone) and, where it is rough, the micro-normal means of its
+/// Fresnel factors.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface<'a> {
+    pub eta: f64,
+    pub alpha: f64,
+    pub rough: Option<&'a RoughInterface>,
+}
+
+impl<'a> Surface<'a> {
+    /// A smooth surface: the Fresnel factor itself at every event.
+    pub fn smooth(eta: f64, alpha: f64) -> Self {
+        Self {
+            eta,
+            alpha,
+            rough: None,
+        }
+    }
+
+    /// A rough surface of the interface's η.
+    pub fn rough(rough: &'a RoughInterface, alpha: f64) -> Self {
+        Self {
+            eta: rough.eta(),
+            alpha,
+            rough: Some(rough),
+        }
+    }
+
+    /// Flat and smooth: d'Eon et al. 2011's fiber, whose A(p, h) has a closed form.
+    fn is_flat_and_smooth(&self) -> bool {
+        self.alpha == 0.0 && self.rough.is_none()
+    }
+
+    fn outside(&self, cos: f64) -> Albedo {
+        match self.rough {
+            Some(r) => r.outside(cos),
+            None => Albedo::smooth(cos, self.eta),
+        }
+    }
+
+    /// After `reflections` internal reflections ([`RoughInterface::inside_after`]).
+    fn inside(&self, cos: f64, reflections: usize) -> Albedo {
+        match self.rough {
+            Some(r) => r.inside_after(cos, reflections),
+            None => Albedo::smooth(cos, 1.0 / self.eta),
+        }
+    }
+}
+
+/// A(0, h): the (mean) Fresnel factor at the tilted micro-normal, 0 where the scale is met
+/// from behind or mirrors the ray into the fiber.
+pub fn tilted_reflectance(theta_i: f64, h: f64, surface: Surface) -> f64 {
+    let Ok(at) = AtScale::outside(surface.alpha, incident(theta_i, h)) else {
         return 0.0;
     };
     match at.reflect() {
-        Ok(_) => fresnel_dielectric(at.cos, eta),
+        Ok(_) => surface.outside(at.cos).reflected,
         Err(_) => 0.0,
     }
 }
 
-/// A(p, h) and the losses for light at inclination `theta_i` entering at offset `h` a smooth
-/// fiber of index `eta` whose scales tilt by `alpha` (the sign of `nusselt`: α > 0 raises the
-/// R cone), absorbing `mu_a` per unit radius. With α = 0 this is [`attenuation`] itself.
+/// A(p, h) and the losses for light at inclination `theta_i` entering the fiber of `surface` at
+/// offset `h`, absorbing `mu_a` per unit radius. With flat, smooth scales this is
+/// [`attenuation`] itself.
 pub fn tilted_attenuation(
     theta_i: f64,
     h: f64,
-    eta: f64,
-    alpha: f64,
+    surface: Surface,
     mu_a: DVec3,
 ) -> TiltedAttenuation {
     let mut out = TiltedAttenuation::default();
-    if alpha == 0.0 {
-        out.lobes = attenuation(theta_i, h, eta, mu_a);
+    if surface.is_flat_and_smooth() {
+        out.lobes = attenuation(theta_i, h, surface.eta, mu_a);
         return out;
     }
-    let tilt = Tilt::new(alpha);
+    let tilt = Tilt::new(surface.alpha);
     let Ok(entry) = AtScale::outside(tilt, incident(theta_i, h)) else {
         out.back_facing = DVec3::ONE;
         return out;
     };
-    let f = fresnel_dielectric(entry.cos, eta);
+    let albedo = surface.outside(entry.cos);
     match entry.reflect() {
-        Ok(_) => out.lobes.0[0] = DVec3::splat(f),
-        Err(why) => out.lose(why, DVec3::splat(f)),
+        Ok(_) => out.lobes.0[0] = DVec3::splat(albedo.reflected),
+        Err(why) => out.lose(why, DVec3::splat(albedo.reflected)),
     }
-    let power = DVec3::splat(1.0 - f);
-    match entry.refract(eta) {
-        Ok(inward) => follow_inside(&mut out, inward, power, eta, tilt, mu_a),
-        Err(why) => out.lose(why, power),
+    out.shadowed = DVec3::splat(albedo.lost());
+    match surface.rough {
+        Some(rough) => enter_rough(&mut out, &entry, albedo.transmitted, rough, surface, mu_a),
+        None => {
+            let power = DVec3::splat(albedo.transmitted);
+            match entry.refract(surface.eta) {
+                Ok(inward) => follow_inside(&mut out, inward, power, surface, tilt, mu_a),
+                Err(why) => out.lose(why, power),
+            }
+        }
     }
     out
 }
 
-/// Follows the refracted power from event to event: at each, the part 1 − F leaves as lobe p
-/// (the number of segments so far) and the part F reflects on.
+/// The power `transmitted` into a rough fiber, followed along each direction of
+/// [`RoughInterface::refractions`] in proportion to its weight.
+fn enter_rough(
+    out: &mut TiltedAttenuation,
+    entry: &AtScale,
+    transmitted: f64,
+    rough: &RoughInterface,
+    surface: Surface,
+    mu_a: DVec3,
+) {
+    let tilt = Tilt::new(surface.alpha);
+    let arriving = entry.arriving();
+    let total: f64 = rough.refractions(arriving).map(|r| r.weight).sum();
+    if total <= 0.0 {
+        out.shadowed += DVec3::splat(transmitted);
+        return;
+    }
+    for r in rough.refractions(arriving) {
+        let power = DVec3::splat(transmitted * r.weight / total);
+        match entry.leaving(r.travel) {
+            Ok(inward) => follow_inside(out, inward, power, surface, tilt, mu_a),
+            Err(why) => out.lose(why, power),
+        }
+    }
+}
+
+/// Follows the refracted power from event to event: at each, the part ρ_t (1 − F when smooth)
+/// leaves as lobe p (the number of segments so far) and the part ρ_r (F) reflects on.
 fn follow_inside(
     out: &mut TiltedAttenuation,
     mut travel: Nusselt,
     mut power: DVec3,
-    eta: f64,
+    surface: Surface,
     tilt: Tilt,
     mu_a: DVec3,
 ) {
@@ -131,26 +233,47 @@ fn follow_inside(
             Ok(at) => at,
             Err(why) => return out.lose(why, power),
         };
-        let f = fresnel_dielectric(at.cos, 1.0 / eta);
-        if f < 1.0 {
-            let leaving = power * (1.0 - f);
-            match at.refract(eta) {
-                Ok(_) => out.lobes.0[p.min(4)] += leaving,
-                Err(why) => out.lose(why, leaving),
-            }
-        } else if p == 1 {
+        let albedo = surface.inside(at.cos, p - 1);
+        let exit = at.refract(surface.eta);
+        if p == 1 && exit == Err(Blocked::TotalInternalReflection) {
             out.tt_totally_reflected = power;
         }
-        power *= f;
+        if albedo.transmitted > 0.0 {
+            let leaving = power * albedo.transmitted;
+            match exit {
+                Ok(_) => out.lobes.0[p.min(4)] += leaving,
+                // Past the smooth critical angle only a rough surface lets light out: through
+                // micro-normals turned toward the ray, so it leaves near the surface.
+                Err(Blocked::TotalInternalReflection) => out.lobes.0[p.min(4)] += leaving,
+                Err(why) => out.lose(why, leaving),
+            }
+        }
+        out.shadowed += power * albedo.lost();
+        power *= albedo.reflected;
         if power.max_element() < NEGLIGIBLE {
             return;
         }
-        travel = match at.reflect() {
+        travel = match reflect_at(&at, albedo.reflected_cos) {
             Ok(d) => d,
             Err(why) => return out.lose(why, power),
         };
     }
     out.cut_off += power;
+}
+
+/// The reflection at `at` leaving at cosine `cos` to the scale's normal, in the mirror's plane:
+/// the mirror itself where `cos` is the arriving cosine (a smooth surface).
+fn reflect_at(at: &AtScale, cos: f64) -> Result<Nusselt, Blocked> {
+    if cos == at.cos {
+        return at.reflect();
+    }
+    let d = at.arriving();
+    let tangential = (d.x * d.x + d.y * d.y).sqrt();
+    if tangential == 0.0 {
+        return at.reflect();
+    }
+    let k = (1.0 - cos * cos).max(0.0).sqrt() / tangential;
+    at.leaving(DVec3::new(-d.x * k, -d.y * k, cos))
 }
 
 /// exp(−μ_a L) over the chord L = 2z/(1 − x²) of the internal direction (x, y).
@@ -165,7 +288,7 @@ fn segment_transmittance((x, y): Nusselt, mu_a: DVec3) -> DVec3 {
 
 /// The fiber's energy budget for light at θ_i: ½ ∫ over h of [`tilted_attenuation`], i.e. each
 /// lobe's energy and each loss as fractions of the intercepted power (RGB).
-pub fn energy_budget(theta_i: f64, eta: f64, alpha: f64, mu_a: DVec3) -> TiltedAttenuation {
+pub fn energy_budget(theta_i: f64, surface: Surface, mu_a: DVec3) -> TiltedAttenuation {
     // In γ = asin h (dh = cos γ dγ), panels fine enough for the TIR onsets across h.
     let rule = GaussLegendre::cached(16);
     let panels = 64;
@@ -176,13 +299,14 @@ pub fn energy_budget(theta_i: f64, eta: f64, alpha: f64, mu_a: DVec3) -> TiltedA
         for (x, w) in rule.nodes.iter().zip(&rule.weights) {
             let gamma = a + 0.5 * width * (x + 1.0);
             let weight = 0.25 * width * w * gamma.cos();
-            let t = tilted_attenuation(theta_i, gamma.sin(), eta, alpha, mu_a);
+            let t = tilted_attenuation(theta_i, gamma.sin(), surface, mu_a);
             for (s, v) in sum.lobes.0.iter_mut().zip(t.lobes.0) {
                 *s += weight * v;
             }
             sum.back_facing += weight * t.back_facing;
             sum.wrong_side += weight * t.wrong_side;
             sum.cut_off += weight * t.cut_off;
+            sum.shadowed += weight * t.shadowed;
             sum.tt_totally_reflected += weight * t.tt_totally_reflected;
         }
     }
@@ -192,18 +316,19 @@ pub fn energy_budget(theta_i: f64, eta: f64, alpha: f64, mu_a: DVec3) -> TiltedA
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fresnel::fresnel_dielectric;
 
     #[test]
     fn flat_scales_give_the_smooth_fiber_and_every_offset_balances() {
         let mu = DVec3::new(0.0, 0.3, 1.0);
         for &theta in &[-1.3, 0.0, 0.75, 1.1] {
             for &h in &[-0.95, -0.3, 0.0, 0.6, 0.99] {
-                let flat = tilted_attenuation(theta, h, 1.55, 0.0, mu);
+                let flat = tilted_attenuation(theta, h, Surface::smooth(1.55, 0.0), mu);
                 assert_eq!(flat.lobes, attenuation(theta, h, 1.55, mu));
                 // A tiny tilt changes nothing measurable: the loop agrees with the closed
                 // form. (Grazing rays are sensitive: at θ −1.3, h 0.99 the p ≥ 4 remainder,
                 // summed over ~100 internal reflections, moves by −200 α.)
-                let tiny = tilted_attenuation(theta, h, 1.55, 1e-12, mu);
+                let tiny = tilted_attenuation(theta, h, Surface::smooth(1.55, 1e-12), mu);
                 for p in 0..5 {
                     let d = (tiny.lobes.0[p] - flat.lobes.0[p]).abs().max_element();
                     assert!(d < 1e-9, "θ {theta} h {h} p {p}: {d}");
@@ -211,7 +336,7 @@ mod tests {
                 assert!(tiny.back_facing + tiny.wrong_side == DVec3::ZERO);
                 // Lossless and tilted: every bit of power leaves or is lost, at every h.
                 for alpha in [-0.07, -0.035, 0.035, 0.07] {
-                    let t = tilted_attenuation(theta, h, 1.55, alpha, DVec3::ZERO);
+                    let t = tilted_attenuation(theta, h, Surface::smooth(1.55, alpha), DVec3::ZERO);
                     let total = t.lobes.total() + t.lost();
                     assert!(
                         (total - DVec3::ONE).abs().max_element() < 1e-12,
@@ -228,8 +353,8 @@ mod tests {
         let (theta, h, eta, alpha) = (1.1f64, 0.3f64, 1.55, 0.035f64);
         let cos = alpha.sin() * theta.sin() + alpha.cos() * theta.cos() * (1.0 - h * h).sqrt();
         let want = fresnel_dielectric(cos, eta);
-        assert!((tilted_reflectance(theta, h, eta, alpha) - want).abs() < 1e-14);
-        let t = tilted_attenuation(theta, h, eta, alpha, DVec3::ZERO);
+        assert!((tilted_reflectance(theta, h, Surface::smooth(eta, alpha)) - want).abs() < 1e-14);
+        let t = tilted_attenuation(theta, h, Surface::smooth(eta, alpha), DVec3::ZERO);
         assert!((t.lobes.0[0].x - want).abs() < 1e-14);
     }
 }

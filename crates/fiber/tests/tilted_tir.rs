@@ -13,7 +13,7 @@
 
 use cuticle_fiber::nonseparable::{trt_exit, tt_exit};
 use cuticle_fiber::nusselt::{self, Blocked};
-use cuticle_fiber::tilted_attenuation::{incident, tilted_attenuation};
+use cuticle_fiber::tilted_attenuation::{Surface, incident, tilted_attenuation};
 use glam::{DVec2, DVec3};
 
 const ETA: f64 = 1.55;
@@ -115,7 +115,7 @@ fn totally_reflected_offsets_match_an_exact_trace() {
         let model_trt = fraction(|h| tir(trt_exit(theta_i, alpha, ETA, h)));
         // The attenuation the model integrates flags the same offsets.
         let attenuated = fraction(|h| {
-            tilted_attenuation(theta_i, h, ETA, alpha, DVec3::ZERO)
+            tilted_attenuation(theta_i, h, Surface::smooth(ETA, alpha), DVec3::ZERO)
                 .tt_totally_reflected
                 .x
                 > 0.0
@@ -153,7 +153,8 @@ fn totally_reflected_power_feeds_the_later_lobes_or_is_lost() {
         let alpha = f64::to_radians(alpha_deg);
         let (mut reflected, mut escaped) = (0.0, 0.0);
         for k in 0..OFFSETS {
-            let t = tilted_attenuation(theta_i, offset(k), ETA, alpha, DVec3::ZERO);
+            let t =
+                tilted_attenuation(theta_i, offset(k), Surface::smooth(ETA, alpha), DVec3::ZERO);
             if t.tt_totally_reflected.x > 0.0 {
                 assert_eq!(
                     t.lobes.0[1].x, 0.0,

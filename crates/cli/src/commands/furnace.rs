@@ -6,10 +6,11 @@
 use crate::commands::fiber_args::{FiberArgs, ModelName};
 use crate::output::OutDir;
 use anyhow::{Result, bail};
+use cuticle_fiber::NonSeparable;
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
 use cuticle_fiber::lobe::channel_mean;
 use cuticle_fiber::ranges;
-use cuticle_fiber::tilted_attenuation::{TiltedAttenuation, energy_budget};
+use cuticle_fiber::tilted_attenuation::{Surface, TiltedAttenuation, energy_budget};
 use rayon::prelude::*;
 use serde_json::json;
 use std::path::PathBuf;
@@ -126,14 +127,16 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// ½ ∫ Σ_p A(p, h) dh and the losses for the models built on A(p, h): d'Eon 2011 and the
-/// paper's non-separable form on the untilted fiber's, the tilted form on its tilted scales';
-/// none for Marschner 2003 (its own attenuation, with no stated budget).
+/// paper's non-separable form on the smooth untilted fiber's, the tilted form its own (tilted
+/// scales, rough Fresnel factors); none for Marschner 2003 (its own attenuation, with no
+/// stated budget).
 fn budget(fiber: &FiberArgs, theta_i: f64) -> Option<TiltedAttenuation> {
     let p = fiber.params().ok()?;
-    let tilt = match fiber.model {
-        ModelName::Marschner => return None,
-        ModelName::Nonseparable => p.alpha,
-        ModelName::Deon2011 | ModelName::NonseparablePaper => 0.0,
-    };
-    Some(energy_budget(theta_i, p.eta, tilt, p.mu_a))
+    match fiber.model {
+        ModelName::Marschner => None,
+        ModelName::Nonseparable => Some(NonSeparable::new(p).ok()?.energy_budget(theta_i)),
+        ModelName::Deon2011 | ModelName::NonseparablePaper => {
+            Some(energy_budget(theta_i, Surface::smooth(p.eta, 0.0), p.mu_a))
+        }
+    }
 }

@@ -18,6 +18,11 @@
 //!   trapped by total internal reflection removed. The paper sends all of A_TT to a cone at
 //!   the pole instead and keeps the whole budget (its TT energy at θ_i = 1.1, α = 2° is twice
 //!   the simulation's).
+//! - The Fresnel factors are those of the rough surface the simulation traces, averaged over
+//!   its micro-normals ([`crate::rough_interface`], at every event of A(p, h), with or without
+//!   a tilt). The smooth factor lets all of TT out where the exit comes near the critical
+//!   angle at grazing incidence; micro-normals a few degrees off totally reflect a part of it
+//!   at every exit, which feeds the long paths (docs/validation.md has the figures).
 //! - R leaves by the exact mirror off the tilted scale ([`crate::tilted_mirror`]): its azimuth
 //!   as well as its inclination, where the paper keeps Bravais' φ = −2γ_i, which at grazing
 //!   incidence puts the last reflections before the scales cut R off half a radian short.
@@ -123,7 +128,9 @@ impl NonSeparable {
         let az = AzimuthalScattering::new(params.eta, params.beta, params.mu_a);
         let az = match scales {
             Scales::Paper => az,
-            Scales::Tilted => az.with_scale_tilt(params.alpha),
+            Scales::Tilted => az
+                .with_scale_tilt(params.alpha)
+                .with_rough_surface(params.beta),
         };
         Ok(Self {
             params,
@@ -184,7 +191,7 @@ impl NonSeparable {
     /// every M integrates to 1). The paper's form loses nothing.
     pub fn energy_budget(&self, theta_i: f64) -> TiltedAttenuation {
         let az = self.azimuthal();
-        energy_budget(theta_i, az.eta, az.scale_tilt, az.mu_a)
+        energy_budget(theta_i, az.surface(), az.mu_a)
     }
 
     /// The longitudinal lobe of mode p for light at θ_i leaving at azimuth φ.
