@@ -62,8 +62,8 @@ use crate::tilted_attenuation::incident;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
-    cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, trt_exit, tt_exit, tt_offset,
-    variance_r, variance_trt, variance_tt,
+    CutLobe, cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, trt_exit, tt_exit,
+    tt_lobe_rough, tt_offset, variance_r, variance_trt, variance_tt,
 };
 use glam::DVec3;
 use lobe_table::LobeTable;
@@ -268,15 +268,29 @@ impl NonSeparable {
         match p {
             1 => {
                 let h = self.tt_offset(theta_i, phi);
-                [
-                    nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h)),
-                    variance_tt(beta, eta, theta_d, h).sqrt() * cos_d,
-                ]
+                let CutLobe { sin_cone, variance } = self.tt_lobe(theta_i, h);
+                [sin_cone, variance.sqrt() * cos_d]
             }
             _ => [
                 nusselt::exit_trt([alpha; 3], eta, incident(theta_i, 0.0)),
                 variance_trt(beta, eta, theta_d).sqrt() * cos_d,
             ],
+        }
+    }
+
+    /// TT's lobe at offset h: the exit's sine before any clamp and the paper's variance
+    /// ([`variance_tt`]), or, through tilted scales, as a rough exit cuts it
+    /// ([`tt_lobe_rough`]).
+    fn tt_lobe(&self, theta_i: f64, h: f64) -> CutLobe {
+        let FiberParams {
+            eta, beta, alpha, ..
+        } = self.params;
+        match self.scales {
+            Scales::Paper => CutLobe {
+                sin_cone: nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h)),
+                variance: variance_tt(beta, eta, -theta_i, h),
+            },
+            Scales::Tilted => tt_lobe_rough(theta_i, alpha, eta, beta, h),
         }
     }
 
@@ -321,12 +335,13 @@ impl NonSeparable {
             },
             1 => {
                 let h = self.tt_offset(theta_i, phi);
-                let cone = if tilted {
-                    cone_tt_tilted(theta_i, alpha, eta, h)
+                if tilted {
+                    let lobe = self.tt_lobe(theta_i, h);
+                    LongitudinalLobe::new(lobe.variance, asin_fast(lobe.sin_cone.clamp(-1.0, 1.0)))
                 } else {
-                    cone_tt(theta_i, alpha, eta, h)
-                };
-                LongitudinalLobe::new(variance_tt(beta, eta, theta_d, h), cone)
+                    let cone = cone_tt(theta_i, alpha, eta, h);
+                    LongitudinalLobe::new(variance_tt(beta, eta, theta_d, h), cone)
+                }
             }
             2 => {
                 let cone = if tilted {
