@@ -21,7 +21,7 @@ pub const ITERATIONS: CountRange = CountRange {
 pub enum ModelName {
     Marschner,
     Deon2011,
-    /// The non-separable model with tilted scales' losses (the project's; see the fiber crate).
+    /// The non-separable model with what tilted scales and a rough surface do (the project's).
     Nonseparable,
     /// The non-separable model as d'Eon et al. 2014 specifies it.
     NonseparablePaper,

@@ -8,6 +8,7 @@ use crate::nusselt::AtScale;
 use crate::nusselt::{self, Blocked, Nusselt};
 use crate::special::{asin_fast, normal_quantile, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
+use std::cell::Cell;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 use std::sync::OnceLock;
 
@@ -97,8 +98,8 @@ pub struct CutLobe {
     pub variance: f64,
 }
 
-/// Equal-probability scale tilts per event in [`tt_lobe_rough`]: 12² paths per lobe.
-const TT_TILTS: usize = 12;
+/// Equal-probability scale tilts per event in [`axial_cut`]: 48² paths per θ_i.
+const TT_TILTS: usize = 48;
 
 /// The standard normal's [`TT_TILTS`] equal-probability midpoints, scaled so that their own
 /// variance is exactly 1 (the midpoints alone fall a few per cent short).
@@ -132,7 +133,7 @@ pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> C
         variance: variance_tt(beta, eta, -theta_i, h),
     };
     let at_h = first_order(h);
-    let (Some(cut), centre) = (axial_cut(theta_i, alpha, eta, beta), first_order(0.0)) else {
+    let (Some(cut), centre) = (axial_cut_last(theta_i, alpha, eta, beta), first_order(0.0)) else {
         return at_h;
     };
     CutLobe {
@@ -141,17 +142,35 @@ pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> C
     }
 }
 
+/// [`axial_cut`], kept for the last arguments on each thread: the lobe table asks for a whole
+/// row of φ at one θ_i, and the cut depends on θ_i alone.
+fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
+    type Last = Option<([f64; 4], Option<CutLobe>)>;
+    thread_local! {
+        static LAST: Cell<Last> = const { Cell::new(None) };
+    }
+    let key = [theta_i, alpha, eta, beta];
+    LAST.with(|last| match last.get() {
+        Some((k, cut)) if k == key => cut,
+        _ => {
+            let cut = axial_cut(theta_i, alpha, eta, beta);
+            last.set(Some((key, cut)));
+            cut
+        }
+    })
+}
+
 /// TT's lobe at h = 0 from the paths that leave: each scale's tilt α + δ, δ the Beckmann slope
 /// along the axis (standard deviation β/√2, the convention of [`variance_tt`]), on a product
 /// grid of equal-probability tilts at entry and exit, followed through the rotation sequence,
 /// weighted by both Fresnel transmissions and the cosines that make a micro-normal more or
 /// less visible, the paths the exit totally reflects left out. The mean exit sine, and the
 /// variance of the exit sine over cos²θ_d: [`variance_tt`] to first order. `None` where no
-/// path leaves.
+/// path leaves, and faded to first order where almost none does ([`FADE`]).
 pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
     let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, 0.0);
-    let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
+    let (mut m0, mut m1, mut m2, mut arriving) = (0.0, 0.0, 0.0, 0.0);
     for &d1 in unit_tilts() {
         let Ok(entry) = AtScale::outside(alpha + sigma * d1, incident) else {
             continue;
@@ -164,6 +183,7 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
             let Ok(at) = AtScale::inside(alpha + sigma * d2, nusselt::propagate(inward)) else {
                 continue;
             };
+            arriving += t1 * at.cos;
             let Ok((x, _)) = at.refract(eta) else {
                 continue;
             };
@@ -178,11 +198,27 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
     }
     let mean = m1 / m0;
     let cos_d = theta_i.cos().abs().max(1e-6);
-    Some(CutLobe {
+    let cut = CutLobe {
         sin_cone: mean,
         variance: (m2 / m0 - mean * mean).max(0.0) / (cos_d * cos_d),
+    };
+    // Where the exit lets out under FADE of what arrives there, the few paths left decide
+    // the moments, and the last to go would leave a jump to `None`: fade to first order.
+    let fade = (m0 / (arriving * FADE)).min(1.0);
+    let first = CutLobe {
+        sin_cone: nusselt::exit_tt([alpha; 2], eta, incident),
+        variance: variance_tt(beta, eta, -theta_i, 0.0),
+    };
+    Some(CutLobe {
+        sin_cone: first.sin_cone + fade * (cut.sin_cone - first.sin_cone),
+        variance: first.variance + fade * (cut.variance - first.variance),
     })
 }
+
+/// The share of the power arriving at TT's exit that must leave for [`axial_cut`]'s moments
+/// to count in full; below it they fade linearly to the first-order lobe, so that the lobe
+/// stays continuous in θ_i where TT goes dark.
+const FADE: f64 = 0.2;
 
 /// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
