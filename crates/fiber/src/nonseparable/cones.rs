@@ -218,7 +218,7 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
 /// The share of the power arriving at TT's exit that must leave for [`axial_cut`]'s moments
 /// to count in full; below it they fade linearly to the first-order lobe, so that the lobe
 /// stays continuous in θ_i where TT goes dark.
-const FADE: f64 = 0.2;
+const FADE: f64 = 0.05;
 
 /// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
