@@ -7,7 +7,6 @@
 //! d'Eon et al. 2014's fixed 70-point rule in h errs by 17 % of TT's peak at β = 0.02 (4·10⁻⁷ at
 //! β = 0.3); this rule by 3·10⁻¹⁴ (test `gamma_panels_converge_where_a_fixed_rule_in_h_rings`).
 
-use crate::attenuation::attenuation;
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
@@ -148,11 +147,8 @@ impl AzimuthalScattering {
 
     /// A(p, h) for all lobes at inclination θ_i.
     pub fn attenuation(&self, theta_i: f64, h: f64) -> LobeValues {
-        if self.scale_tilt == 0.0 && self.rough.is_none() {
-            attenuation(theta_i, h, self.eta, self.mu_a)
-        } else {
-            tilted_attenuation(theta_i, h, self.surface(), self.mu_a).lobes
-        }
+        // Flat and smooth, this is d'Eon 2011's closed form (`attenuation`).
+        tilted_attenuation(theta_i, h, self.surface(), self.mu_a).lobes
     }
 
     /// A(0, h) alone: the Fresnel factor (its micro-normal mean when rough), at the tilted

@@ -31,6 +31,8 @@ const SLOPES: usize = 48;
 const ENTRIES: usize = 1024;
 /// Equal-probability slopes per axis for the directions [`RoughInterface::refractions`] gives.
 const REFRACTION_SLOPES: usize = 4;
+/// The directions [`RoughInterface::refractions`] gives.
+pub const REFRACTIONS: usize = REFRACTION_SLOPES * REFRACTION_SLOPES;
 
 /// Where the power arriving at the interface goes, in the mean over its micro-normals.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -110,8 +112,7 @@ const SPREAD_REFLECTIONS: usize = 6;
 const SPREAD_STEPS: usize = 16;
 
 impl RoughInterface {
-    /// Builds both tables (a few tens of milliseconds); [`RoughInterface::shared`] keeps one per
-    /// (β, η).
+    /// Builds both sides' tables; [`RoughInterface::shared`] keeps one per (β, η).
     pub fn new(beta: f64, eta: f64) -> Self {
         let slopes = slope_quantiles(beta, SLOPES);
         Self {
@@ -137,10 +138,6 @@ impl RoughInterface {
         map.entry(key).or_insert(built).clone()
     }
 
-    pub fn beta(&self) -> f64 {
-        self.beta
-    }
-
     pub fn eta(&self) -> f64 {
         self.eta
     }
@@ -150,12 +147,8 @@ impl RoughInterface {
         self.outside.at(cos_v)
     }
 
-    /// Light arriving from inside the fiber at cos θ_v to the normal.
-    pub fn inside(&self, cos_v: f64) -> Albedo {
-        self.inside[0].at(cos_v)
-    }
-
-    /// Light arriving from inside after `reflections` internal reflections off the rough
+    /// Light arriving from inside the fiber at cos θ_v to the normal, after `reflections`
+    /// internal reflections off the rough
     /// surface, each of which turned it by twice a micro-normal's slope: the albedo averaged
     /// over the spread of arriving directions that adds (variance 4kβ²/2 per axis after k), so
     /// that a path whose mean direction meets the exit short of the critical angle still
@@ -176,23 +169,26 @@ pub struct Refraction {
 
 impl RoughInterface {
     /// The light refracted into the fiber, spread over the directions of a coarse grid of
-    /// micro-normals (6² of equal probability), each with the weight of
-    /// [`albedo_by_quadrature`]'s transmitted term: where the mean of [`RoughInterface::outside`]
-    /// keeps one direction, these keep how the entry's micro-normal tilts the path inside, which
-    /// decides how near the critical angle each part meets the exit. `arriving` points away from
-    /// the surface, z > 0.
-    pub fn refractions(&self, arriving: DVec3) -> impl Iterator<Item = Refraction> + '_ {
+    /// micro-normals ([`REFRACTION_SLOPES`]² of equal probability), each with the weight of
+    /// [`albedo_by_quadrature`]'s transmitted term (0 where a micro-normal sends nothing in):
+    /// where the mean of [`RoughInterface::outside`] keeps one direction, these keep how the
+    /// entry's micro-normal tilts the path inside, which decides how near the critical angle
+    /// each part meets the exit. `arriving` points away from the surface, z > 0.
+    pub fn refractions(&self, arriving: DVec3) -> [Refraction; REFRACTIONS] {
         let slopes = &self.refraction_slopes;
-        let n = (slopes.len() * slopes.len()) as f64;
-        slopes.iter().flat_map(move |&sx| {
-            slopes.iter().filter_map(move |&sy| {
-                let m = DVec3::new(-sx, -sy, 1.0).normalize();
-                let (travel, weight) = refraction_at(arriving, m, self.beta, self.eta)?;
-                Some(Refraction {
+        std::array::from_fn(|k| {
+            let (sx, sy) = (slopes[k / REFRACTION_SLOPES], slopes[k % REFRACTION_SLOPES]);
+            let m = DVec3::new(-sx, -sy, 1.0).normalize();
+            match refraction_at(arriving, m, self.beta, self.eta) {
+                Some((travel, weight)) => Refraction {
                     travel,
-                    weight: weight / n,
-                })
-            })
+                    weight: weight / REFRACTIONS as f64,
+                },
+                None => Refraction {
+                    travel: -DVec3::Z,
+                    weight: 0.0,
+                },
+            }
         })
     }
 }
@@ -303,13 +299,8 @@ fn albedo_by_quadrature(cos_v: f64, beta: f64, eta: f64, slopes: &[f64]) -> Albe
                 sum.reflected += power;
                 sum.reflected_cos += power * reflected.z;
             }
-            if f < 1.0 {
-                let g = (eta * eta - 1.0 + c * c).sqrt();
-                let refracted = ((c - g) * m - v) / eta;
-                if refracted.z < 0.0 {
-                    sum.transmitted +=
-                        weight * (1.0 - f) * smith_g1(refracted.z, refracted.dot(m), beta);
-                }
+            if let Some((_, transmitted)) = refraction_at(v, m, beta, eta) {
+                sum.transmitted += transmitted;
             }
         }
     }
@@ -351,7 +342,7 @@ mod tests {
             assert!((out.transmitted - smooth_out.transmitted).abs() < 2e-3);
             if (c - critical).abs() > 0.01 {
                 let smooth_in = Albedo::smooth(c, 1.0 / 1.55);
-                let inside = rough.inside(c);
+                let inside = rough.inside_after(c, 0);
                 assert!(
                     (inside.reflected - smooth_in.reflected).abs() < 2e-3,
                     "in {c}: {inside:?} vs {smooth_in:?}"
@@ -370,13 +361,16 @@ mod tests {
         let critical = (1.0 - 1.0 / (eta * eta)).sqrt();
         // cos θ_v just under the critical cosine: past the critical angle, where a smooth
         // surface reflects everything; just over it: short of it, where a smooth one lets most out.
-        let past = rough.inside(critical - 0.01);
-        let short = rough.inside(critical + 0.01);
+        let past = rough.inside_after(critical - 0.01, 0);
+        let short = rough.inside_after(critical + 0.01, 0);
         assert!(past.transmitted > 0.02, "{past:?}");
         assert!(short.reflected > Albedo::smooth(critical + 0.01, 1.0 / eta).reflected + 0.02);
         let fine = slope_quantiles(beta, 200);
         for c in [0.2, critical - 0.01, critical + 0.01, 0.9] {
-            for (side, e) in [(rough.outside(c), eta), (rough.inside(c), 1.0 / eta)] {
+            for (side, e) in [
+                (rough.outside(c), eta),
+                (rough.inside_after(c, 0), 1.0 / eta),
+            ] {
                 let want = albedo_by_quadrature(c, beta, e, &fine);
                 assert!(
                     (side.reflected - want.reflected).abs() < 3e-3

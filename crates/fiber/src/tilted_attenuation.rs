@@ -203,12 +203,13 @@ fn enter_rough(
 ) {
     let tilt = Tilt::new(surface.alpha);
     let arriving = entry.arriving();
-    let total: f64 = rough.refractions(arriving).map(|r| r.weight).sum();
+    let refractions = rough.refractions(arriving);
+    let total: f64 = refractions.iter().map(|r| r.weight).sum();
     if total <= 0.0 {
         out.shadowed += DVec3::splat(transmitted);
         return;
     }
-    for r in rough.refractions(arriving) {
+    for r in refractions.iter().filter(|r| r.weight > 0.0) {
         let power = DVec3::splat(transmitted * r.weight / total);
         match entry.leaving(r.travel) {
             Ok(inward) => follow_inside(out, inward, power, surface, tilt, mu_a),

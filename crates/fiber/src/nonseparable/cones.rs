@@ -98,6 +98,15 @@ pub struct CutLobe {
     pub variance: f64,
 }
 
+/// TT's first-order lobe at offset h (d'Eon et al. 2014 §2.4): the Nusselt exit's sine before
+/// any clamp and [`variance_tt`] at θ_d = −θ_i.
+pub fn first_order_tt(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
+    CutLobe {
+        sin_cone: nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h)),
+        variance: variance_tt(beta, eta, -theta_i, h),
+    }
+}
+
 /// Equal-probability scale tilts per event in [`axial_cut`]: 48² paths per θ_i.
 const TT_TILTS: usize = 48;
 
@@ -128,14 +137,11 @@ fn unit_tilts() -> &'static [f64; TT_TILTS] {
 /// standard deviation. This departs from d'Eon et al. 2014 §2.4, whose lobe is first order
 /// alone.
 pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
-    let first_order = |h: f64| CutLobe {
-        sin_cone: nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h)),
-        variance: variance_tt(beta, eta, -theta_i, h),
-    };
-    let at_h = first_order(h);
-    let (Some(cut), centre) = (axial_cut_last(theta_i, alpha, eta, beta), first_order(0.0)) else {
+    let at_h = first_order_tt(theta_i, alpha, eta, beta, h);
+    let Some(cut) = axial_cut_last(theta_i, alpha, eta, beta) else {
         return at_h;
     };
+    let centre = first_order_tt(theta_i, alpha, eta, beta, 0.0);
     CutLobe {
         sin_cone: at_h.sin_cone + (cut.sin_cone - centre.sin_cone),
         variance: at_h.variance * (cut.variance / centre.variance).min(1.0),
@@ -205,10 +211,7 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
     // Where the exit lets out under FADE of what arrives there, the few paths left decide
     // the moments, and the last to go would leave a jump to `None`: fade to first order.
     let fade = (m0 / (arriving * FADE)).min(1.0);
-    let first = CutLobe {
-        sin_cone: nusselt::exit_tt([alpha; 2], eta, incident),
-        variance: variance_tt(beta, eta, -theta_i, 0.0),
-    };
+    let first = first_order_tt(theta_i, alpha, eta, beta, 0.0);
     Some(CutLobe {
         sin_cone: first.sin_cone + fade * (cut.sin_cone - first.sin_cone),
         variance: first.variance + fade * (cut.variance - first.variance),

@@ -29,6 +29,8 @@
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
+//! - TT's lobe is cut where a rough exit meets the surface at grazing incidence
+//!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than §2.4's first order.
 //! - Each M still integrates to 1, so ∫ S dω is the budget of [`NonSeparable::energy_budget`]
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
@@ -62,8 +64,8 @@ use crate::tilted_attenuation::incident;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
-    CutLobe, cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, trt_exit, tt_exit,
-    tt_lobe_rough, tt_offset, variance_r, variance_trt, variance_tt,
+    CutLobe, cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, first_order_tt, trt_exit,
+    tt_exit, tt_lobe_rough, tt_offset, variance_r, variance_trt, variance_tt,
 };
 use glam::DVec3;
 use lobe_table::LobeTable;
@@ -286,10 +288,7 @@ impl NonSeparable {
             eta, beta, alpha, ..
         } = self.params;
         match self.scales {
-            Scales::Paper => CutLobe {
-                sin_cone: nusselt::exit_tt([alpha; 2], eta, incident(theta_i, h)),
-                variance: variance_tt(beta, eta, -theta_i, h),
-            },
+            Scales::Paper => first_order_tt(theta_i, alpha, eta, beta, h),
             Scales::Tilted => tt_lobe_rough(theta_i, alpha, eta, beta, h),
         }
     }
