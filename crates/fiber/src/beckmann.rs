@@ -6,6 +6,7 @@ use crate::special::erfc_rel_1_2e7;
 use std::f64::consts::PI;
 
 /// D(m) = exp(−tan²θ_m/β²) / (π β² cos⁴θ_m) for cos θ_m = m·n > 0 (Walter 2007 eq. 25).
+#[inline]
 pub fn distribution(cos_m: f64, beta: f64) -> f64 {
     if cos_m <= 0.0 {
         return 0.0;
@@ -18,6 +19,7 @@ pub fn distribution(cos_m: f64, beta: f64) -> f64 {
 /// Smith's Λ for Beckmann, Λ(a) = (exp(−a²)/(a√π) − erfc(a)) / 2 with a = 1/(β tan θ_v), so that
 /// G1 = 1/(1 + Λ) = 2 / (1 + erf(a) + exp(−a²)/(a√π)) is Walter 2007 eq. 27 (the exact erf form,
 /// not the rational approximation). Λ < 10⁻¹⁵ once a > 6, where it is taken as 0.
+#[inline]
 fn smith_lambda(a: f64) -> f64 {
     if a > 6.0 {
         return 0.0;
@@ -28,6 +30,7 @@ fn smith_lambda(a: f64) -> f64 {
 /// Smith G1(v, m) for Beckmann (Walter 2007 eq. 27), given cos θ_v = v·n and v·m. Zero when v
 /// sees m from the other side than n (the χ⁺ factor); exactly 1 where a > 6 (Λ < 10⁻¹⁵), which
 /// is tested as cos²θ_v > 36 β² sin²θ_v without a root or a division.
+#[inline]
 pub fn smith_g1(cos_v: f64, v_dot_m: f64, beta: f64) -> f64 {
     if v_dot_m * cos_v <= 0.0 {
         return 0.0;
