@@ -13,6 +13,7 @@ use crate::lobe::{LobeValues, channel_mean};
 use crate::rough_interface::RoughInterface;
 use crate::special::{GaussLegendre, normal_pdf_fast};
 use crate::tilted_attenuation::{Surface, tilted_attenuation, tilted_reflectance};
+use crate::tilted_deflection::deflection_shift;
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror_offsets};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -250,20 +251,16 @@ impl AzimuthalScattering {
         let panels = self.panel_count(p, eta_p);
         let width = PI / panels as f64;
         let slope = deflection_slope_bound(p, eta_p);
-        let reach = 0.5 * width * slope + 8.0 * v.sqrt();
         let mut sum = DVec3::ZERO;
         for k in 0..panels {
             let mid = -0.5 * PI + (k as f64 + 0.5) * width;
-            // Φ moves at most `slope` per radian of γ: skip panels the lobe cannot reach.
-            if crate::frame::wrap_pi(phi - azimuthal_deflection(p as u32, mid.sin(), eta_p)).abs()
-                > reach
-            {
+            if !self.panel_reaches(p, theta_i, eta_p, phi, mid, width, slope) {
                 continue;
             }
             for (x, w) in rule.nodes.iter().zip(&rule.weights) {
                 let gamma = mid + 0.5 * width * x;
                 let h = gamma.sin();
-                let d = wrapped_gaussian(phi - azimuthal_deflection(p as u32, h, eta_p), v);
+                let d = wrapped_gaussian(phi - self.deflection(p, theta_i, h, eta_p), v);
                 if d < 1e-300 {
                     continue;
                 }
@@ -272,6 +269,53 @@ impl AzimuthalScattering {
             }
         }
         sum * 0.25 * width
+    }
+
+    /// Whether lobe p's Gaussians centred on the panel of γ ∈ mid ± width/2 can reach φ. Bravais'
+    /// Φ moves at most `slope` per radian of γ; what tilted scales add to it
+    /// ([`deflection_shift`]) is bounded by its spread over the panel's ends and middle, with
+    /// the same margin again (it turns steeply where an exit starts to be totally reflected).
+    #[allow(clippy::too_many_arguments)]
+    fn panel_reaches(
+        &self,
+        p: usize,
+        theta_i: f64,
+        eta_p: f64,
+        phi: f64,
+        mid: f64,
+        width: f64,
+        slope: f64,
+    ) -> bool {
+        let mut reach = 0.5 * width * slope + 8.0 * self.v_n[p].sqrt();
+        let shift = |g: f64| self.deflection_shift(p, theta_i, g.sin());
+        let centre = shift(mid);
+        if self.scale_tilt != 0.0 {
+            let spread = [mid - 0.5 * width, mid + 0.5 * width]
+                .map(|g| (shift(g) - centre).abs())
+                .into_iter()
+                .fold(0.0, f64::max);
+            reach += 2.0 * spread;
+        }
+        let bravais = azimuthal_deflection(p as u32, mid.sin(), eta_p);
+        crate::frame::wrap_pi(phi - bravais - centre).abs() <= reach
+    }
+
+    /// Φ(p, h) that lobe p's N_p is centred on: Bravais' with η′ as d'Eon et al. 2011 take it,
+    /// plus what tilted scales add ([`Self::deflection_shift`]).
+    pub fn deflection(&self, p: usize, theta_i: f64, h: f64, eta_p: f64) -> f64 {
+        azimuthal_deflection(p as u32, h, eta_p) + self.deflection_shift(p, theta_i, h)
+    }
+
+    /// What the scale tilt adds to TT's Φ(1, h) ([`deflection_shift`]); 0 untilted and for the
+    /// other lobes. R's tilted form solves its exact mirror instead. TRT keeps Bravais' Φ: its
+    /// internal reflection off the rough surface turns it more than the tilt does, and shifting
+    /// it by the smooth geometry made every tilted cell of the validation slice worse
+    /// (docs/validation.md, departure 9).
+    pub fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
+        match p {
+            1 => deflection_shift(1, theta_i, self.scale_tilt, self.eta, h),
+            _ => 0.0,
+        }
     }
 
     /// Panels such that Φ moves by at most a third of the lobe's standard deviation per node.

@@ -326,7 +326,8 @@ impl FiberModel for DEon2011 {
         let (si, ci) = sin_cos_quadrant(wi.theta);
         let theta_o = asin_fast(self.cones.sample_sin(p.min(3), si, ci, u[2], u[3]));
         let theta_d = 0.5 * (theta_o - wi.theta);
-        let phi = sample_phi(&self.azimuthal, p, h, theta_d, u_phi);
+        let shift = self.azimuthal.deflection_shift(p, wi.theta, h);
+        let phi = sample_phi(&self.azimuthal, p, h, shift, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
         let (s, pdf) = self.eval_and_pdf(wi, wo);
         weighted_sample(wo, s, pdf, Lobe::from_index(p), 1)
@@ -395,17 +396,27 @@ impl Pair {
 }
 
 /// φ for lobe p entering at h: Φ(p, h) plus a wrapped-Gaussian offset (d'Eon 2013); R has
-/// no offset and the p ≥ 4 remainder is uniform.
-pub(crate) fn sample_phi(az: &AzimuthalScattering, p: usize, h: f64, theta_d: f64, u: f64) -> f64 {
+/// no offset and the p ≥ 4 remainder is uniform. `shift` is what tilted scales add to Φ(p, h),
+/// [`AzimuthalScattering::deflection_shift`] (found once by a caller that draws φ repeatedly
+/// at one offset).
+pub(crate) fn sample_phi(
+    az: &AzimuthalScattering,
+    p: usize,
+    h: f64,
+    shift: f64,
+    theta_d: f64,
+    u: f64,
+) -> f64 {
     let eta_p = if matches!(p, 1..=3) {
         eta_prime(az.eta, theta_d)
     } else {
         az.eta
     };
-    sample_phi_at(az, p, h, eta_p, u)
+    sample_phi_at(az, p, h, eta_p, u) + shift
 }
 
-/// [`sample_phi`] for η′(θ_d) already found (R and the remainder do not use it).
+/// [`sample_phi`] for η′(θ_d) already found (R and the remainder do not use it), without a
+/// tilt's shift (the tabulated path is untilted).
 fn sample_phi_at(az: &AzimuthalScattering, p: usize, h: f64, eta_p: f64, u: f64) -> f64 {
     match p {
         0 => azimuthal_deflection(0, h, az.eta),

@@ -40,6 +40,7 @@ pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
 pub mod tilted_attenuation;
+pub mod tilted_deflection;
 pub mod tilted_mirror;
 
 pub use chiang2016::Chiang2016;

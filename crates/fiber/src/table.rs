@@ -301,7 +301,8 @@ impl AzimuthalTable {
     }
 }
 
-/// One θ_i row of one lobe: A and the selection probability at every quadrature node once, then
+/// One θ_i row of one lobe: A, the selection probability and the tilt's shift of Φ
+/// ([`AzimuthalScattering::deflection_shift`]) at every quadrature node once, then
 /// for each θ_d the wrapped Gaussians splatted onto the φ columns they reach.
 fn fill_row(
     az: &AzimuthalScattering,
@@ -317,7 +318,7 @@ fn fill_row(
     let panels = ((slope * PI / (PANEL_NODES as f64 * sigma / 3.0)).ceil() as usize).clamp(2, 1024);
     let rule = GaussLegendre::cached(PANEL_NODES);
     let width = PI / panels as f64;
-    let nodes: Vec<(f64, DVec3, f64)> = (0..panels)
+    let nodes: Vec<(f64, f64, DVec3, f64)> = (0..panels)
         .flat_map(|k| {
             rule.nodes
                 .iter()
@@ -333,7 +334,8 @@ fn fill_row(
                 Some(f) => f(theta_i, h)[p],
                 None => selection_from(&a)[p],
             };
-            (h, a.0[p] * weight, sel * weight)
+            let shift = az.deflection_shift(p, theta_i, h);
+            (h, shift, a.0[p] * weight, sel * weight)
         })
         .collect();
     let reach = 8.0 * sigma;
@@ -343,8 +345,8 @@ fn fill_row(
         let eta_p = eta_perp_at(az.eta, d);
         let out = &mut row[d * phi_nodes..(d + 1) * phi_nodes];
         let mut acc = vec![[0.0f64; 4]; phi_nodes];
-        for &(h, a, sel) in &nodes {
-            let center = wrap_pi(azimuthal_deflection(p as u32, h, eta_p));
+        for &(h, shift, a, sel) in &nodes {
+            let center = wrap_pi(azimuthal_deflection(p as u32, h, eta_p) + shift);
             // Every image c + 2πk of the lobe that reaches a column of [0, π].
             for k in -images..=images {
                 let c = center + 2.0 * PI * k as f64;

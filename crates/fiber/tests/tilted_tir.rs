@@ -22,7 +22,8 @@ const OFFSETS: usize = 20_000;
 /// What the exact trace finds at the exit of a lobe.
 #[derive(Debug, PartialEq)]
 enum Exit {
-    Leaves,
+    /// Leaves in this direction of travel.
+    Leaves(DVec3),
     TotallyReflected,
     /// Back of a scale or through the macro surface before the exit.
     Blocked,
@@ -67,7 +68,7 @@ fn trace(theta_i: f64, alpha: f64, h: f64) -> (Exit, Exit) {
         return (Exit::Blocked, Exit::Blocked);
     }
     let tt = match refract(t, -n2, ETA) {
-        Some(_) => Exit::Leaves,
+        Some(o) => Exit::Leaves(o),
         None => Exit::TotallyReflected,
     };
     let r = t - 2.0 * t.dot(n2) * n2;
@@ -80,7 +81,7 @@ fn trace(theta_i: f64, alpha: f64, h: f64) -> (Exit, Exit) {
         return (tt, Exit::Blocked);
     }
     let trt = match refract(r, -n3, ETA) {
-        Some(_) => Exit::Leaves,
+        Some(o) => Exit::Leaves(o),
         None => Exit::TotallyReflected,
     };
     (tt, trt)
@@ -172,5 +173,54 @@ fn totally_reflected_power_feeds_the_later_lobes_or_is_lost() {
             1.0 - share
         );
         assert!(reflected > 0.0 && share < 0.01, "{share}");
+    }
+}
+
+/// Φ(p, h) through tilted scales (`tilted_deflection`, which the tilted model's TT lobe is
+/// centred on) is the azimuth at which the exact trace leaves, at every offset whose TT or TRT
+/// leaves, and has none where the trace is blocked; Bravais' Φ, which the paper's model keeps,
+/// is measurably off.
+#[test]
+fn tilted_deflection_is_the_exit_azimuth_of_an_exact_trace() {
+    use cuticle_fiber::bravais::{azimuthal_deflection, eta_prime};
+    use cuticle_fiber::frame::wrap_pi;
+    use cuticle_fiber::tilted_deflection::tilted_deflection;
+    for (theta_i, alpha_deg) in [(0.75, -4.0), (0.75, 4.0), (1.1, -2.0), (-0.3, 2.0)] {
+        let alpha = f64::to_radians(alpha_deg);
+        let (mut compared, mut bravais_off) = ([0usize; 2], [0.0f64; 2]);
+        for k in 0..2_000 {
+            let h = offset(k * 10);
+            let (tt, trt) = trace(theta_i, alpha, h);
+            for (p, exit) in [(1u32, tt), (2, trt)] {
+                let model = tilted_deflection(p, theta_i, alpha, ETA, h);
+                let Exit::Leaves(o) = exit else {
+                    assert_eq!(
+                        model, None,
+                        "θ_i {theta_i} α {alpha_deg}° p {p} h {h}: {exit:?}"
+                    );
+                    continue;
+                };
+                // The ray arrives travelling along −ω_i, at azimuth 0 here.
+                let exact = o.z.atan2(o.y);
+                let model = model.expect("a path the exact trace sees leave");
+                assert!(
+                    wrap_pi(model - exact).abs() < 1e-9,
+                    "θ_i {theta_i} α {alpha_deg}° p {p} h {h}: {model} vs exact {exact}"
+                );
+                let bravais = azimuthal_deflection(p, h, eta_prime(ETA, theta_i));
+                let i = p as usize - 1;
+                compared[i] += 1;
+                bravais_off[i] = bravais_off[i].max(wrap_pi(bravais - exact).abs());
+            }
+        }
+        println!(
+            "θ_i {theta_i} α {alpha_deg:+}°: {compared:?} exits compared; Bravais' Φ off by up \
+             to {:.3} (TT) and {:.3} (TRT) rad",
+            bravais_off[0], bravais_off[1]
+        );
+        assert!(
+            compared[0] > 1_000 && bravais_off[0] > 0.05,
+            "{bravais_off:?}"
+        );
     }
 }

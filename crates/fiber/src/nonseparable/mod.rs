@@ -437,9 +437,10 @@ impl NonSeparable {
     ) -> (f64, f64, u32) {
         let mut theta_o = -wi.theta;
         let mut phi = 0.0;
+        let shift = self.azimuthal().deflection_shift(p, wi.theta, h);
         for iteration in 1..=self.iterations {
             let theta_d = 0.5 * (theta_o - wi.theta);
-            phi = sample_phi(self.azimuthal(), p, h, theta_d, u_phi);
+            phi = sample_phi(self.azimuthal(), p, h, shift, theta_d, u_phi);
             let next = self
                 .longitudinal(p, wi.theta, wrap_pi(phi))
                 .sample(u_m[0], u_m[1]);
@@ -507,7 +508,14 @@ impl FiberModel for NonSeparable {
                 let theta_o = self.deon.longitudinal(p, wi.theta).sample(u[2], u[3]);
                 (
                     theta_o,
-                    sample_phi(self.azimuthal(), p, h, 0.5 * (theta_o - wi.theta), u_phi),
+                    sample_phi(
+                        self.azimuthal(),
+                        p,
+                        h,
+                        self.azimuthal().deflection_shift(p, wi.theta, h),
+                        0.5 * (theta_o - wi.theta),
+                        u_phi,
+                    ),
                     1,
                 )
             }
