@@ -31,6 +31,10 @@
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
 //! - TT's lobe is cut where a rough exit meets the surface at grazing incidence
 //!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than §2.4's first order.
+//! - N_TT is centred on TT's exit azimuth through the tilted scales
+//!   ([`crate::tilted_deflection`]), not Bravais' Φ(1, h): a tilt changes the in-plane angle
+//!   of every chord and of the exit. TT's cone keeps the offset Bravais' Φ selects, and TRT
+//!   keeps Bravais' Φ (both measured worse when moved, docs/validation.md departure 9).
 //! - Each M still integrates to 1, so ∫ S dω is the budget of [`NonSeparable::energy_budget`]
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
