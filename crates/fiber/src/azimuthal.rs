@@ -274,7 +274,8 @@ impl AzimuthalScattering {
     /// Whether lobe p's Gaussians centred on the panel of γ ∈ mid ± width/2 can reach φ. Bravais'
     /// Φ moves at most `slope` per radian of γ; what tilted scales add to it
     /// ([`deflection_shift`]) is bounded by its spread over the panel's ends and middle, with
-    /// the same margin again (it turns steeply where an exit starts to be totally reflected).
+    /// the same margin again (it steepens toward the offsets where the smooth exit is blocked,
+    /// and drops to 0 at them).
     #[allow(clippy::too_many_arguments)]
     fn panel_reaches(
         &self,
