@@ -169,8 +169,8 @@ pub struct Refraction {
 
 impl RoughInterface {
     /// The light refracted into the fiber, spread over the directions of a coarse grid of
-    /// micro-normals ([`REFRACTION_SLOPES`]² of equal probability), each with the weight of
-    /// [`albedo_by_quadrature`]'s transmitted term (0 where a micro-normal sends nothing in):
+    /// micro-normals (`REFRACTION_SLOPES`² of equal probability), each with the weight of
+    /// `albedo_by_quadrature`'s transmitted term (0 where a micro-normal sends nothing in):
     /// where the mean of [`RoughInterface::outside`] keeps one direction, these keep how the
     /// entry's micro-normal tilts the path inside, which decides how near the critical angle
     /// each part meets the exit. `arriving` points away from the surface, z > 0.

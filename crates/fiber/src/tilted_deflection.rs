@@ -4,11 +4,11 @@
 //! Bravais' Φ(p, h) = 2pγ_t − 2γ_i + pπ (d'Eon et al. 2014 eq. 3) holds for a smooth cylinder,
 //! where every event meets the surface at the same in-plane angle. A tilted scale turns each
 //! direction about the fiber's tangent, which changes its component along the normal but not
-//! across it, so the in-plane angle atan(|y| / z) of each chord and of the exit changes:
-//! at θ_i = 0.75, α = −4°, η = 1.55 the offset h = 0.95 leaves TT at φ = 1.92 where Bravais
-//! puts it at 1.69 (`tests/tilted_deflection.rs` checks this module against an exact 3D trace).
-//! The paper's model keeps Bravais' Φ for TT and TRT; the tilted model shifts its azimuthal
-//! lobes by [`deflection_shift`] (R has its exact mirror, [`crate::tilted_mirror`]).
+//! across it, so the in-plane angle atan(|y| / z) of each chord and of the exit changes, by
+//! up to half a radian of Φ near the edges (docs/validation.md, departure 9;
+//! `tests/tilted_tir.rs` checks this module against an exact 3D trace). The paper's model
+//! keeps Bravais' Φ; the tilted model shifts TT's azimuthal lobe by [`deflection_shift`]
+//! (R has its exact mirror, [`crate::tilted_mirror`]; TRT measured worse shifted).
 //!
 //! With γ_i the in-plane angle of the incident direction to the normal at entry, γ′_k that of
 //! chord k (the same at both of its ends, by the circle's symmetry) and γ_o that of the exit
@@ -29,7 +29,7 @@ fn in_plane((x, y): Nusselt) -> f64 {
 
 /// Φ(p, h) of the path entering at offset h through scales tilted by α (the sign of
 /// [`crate::nusselt`]), unwrapped like [`azimuthal_deflection`]; `None` where a smooth surface
-/// blocks the path ([`Blocked`]: the back of a scale, the wrong side, or an exit totally
+/// blocks the path ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally
 /// reflected).
 pub fn tilted_deflection(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> Option<f64> {
     let tilt = Tilt::new(alpha);

@@ -10,6 +10,9 @@
 //! scale turns it further toward grazing, and at θ_i = 0.75 and 1.1 with α = +2° the scales
 //! lose all of it (measured: 0.071 and 0.30 of the incident power, none escaping; the
 //! simulation's TRT at θ_i = 1.1 is black too, `crates/validate/tests/tilted_energy.rs`).
+//!
+//! The same trace gives the exit azimuths that `tilted_deflection` must reproduce (issue 14,
+//! departure 9 of docs/validation.md).
 
 use cuticle_fiber::nonseparable::{trt_exit, tt_exit};
 use cuticle_fiber::nusselt::{self, Blocked};

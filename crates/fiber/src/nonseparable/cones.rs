@@ -172,7 +172,7 @@ fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLo
 /// weighted by both Fresnel transmissions and the cosines that make a micro-normal more or
 /// less visible, the paths the exit totally reflects left out. The mean exit sine, and the
 /// variance of the exit sine over cos²θ_d: [`variance_tt`] to first order. `None` where no
-/// path leaves, and faded to first order where almost none does ([`FADE`]).
+/// path leaves, and faded to first order where almost none does (`FADE`).
 pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
     let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, 0.0);
