@@ -148,11 +148,10 @@ impl RoughInterface {
     }
 
     /// Light arriving from inside the fiber at cos θ_v to the normal, after `reflections`
-    /// internal reflections off the rough
-    /// surface, each of which turned it by twice a micro-normal's slope: the albedo averaged
-    /// over the spread of arriving directions that adds (variance 4kβ²/2 per axis after k), so
-    /// that a path whose mean direction meets the exit short of the critical angle still
-    /// partly reflects, as the paths it stands for do.
+    /// internal reflections off the rough surface, each of which turned it by twice a
+    /// micro-normal's slope: the albedo averaged over the spread of arriving directions that
+    /// adds (variance 4kβ²/2 per axis after k), so that a path whose mean direction meets the
+    /// exit short of the critical angle still partly reflects, as the paths it stands for do.
     pub fn inside_after(&self, cos_v: f64, reflections: usize) -> Albedo {
         self.inside[reflections.min(SPREAD_REFLECTIONS)].at(cos_v)
     }
