@@ -16,6 +16,7 @@
 
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::special::{asin_fast, atan2_fast, sin_cos_quadrant};
+use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The mirror of ω_i = (sin θ_i, cos θ_i, 0) (φ_i = 0) at offset h about the scale normal tilted
@@ -38,6 +39,10 @@ pub struct MirrorOffset {
     pub theta: f64,
     /// sin θ_o, which an evaluation of R's lobe takes without the angle.
     pub sin_theta: f64,
+    /// How far θ_o moves per unit micro-normal slope at this azimuth ([`Mirror::spread`]):
+    /// R's longitudinal variance is ½β² spread² (½β² the variance of each Beckmann slope). At
+    /// α = 0 it is 2 cos γ, and the variance eq. 6's 2β²(1 − h²).
+    pub spread: f64,
 }
 
 /// The offset h whose tilted mirror leaves at azimuth φ (unwrapped, as [`tilted_mirror`] gives
@@ -84,11 +89,13 @@ pub fn tilted_mirror_offset_bisection(theta_i: f64, alpha: f64, phi: f64) -> Opt
     let slope = (at((gamma + e).min(FRAC_PI_2)) - at((gamma - e).max(-FRAC_PI_2)))
         / ((gamma + e).min(FRAC_PI_2) - (gamma - e).max(-FRAC_PI_2));
     let theta = tilted_mirror(theta_i, alpha, gamma.sin()).theta;
+    let mirror = Mirror::new(theta_i, alpha);
     (slope < 0.0).then(|| MirrorOffset {
         h: gamma.sin(),
         dh_dphi: gamma.cos() / -slope,
         theta,
         sin_theta: theta.sin(),
+        spread: mirror.spread(mirror.mirror(gamma), slope),
     })
 }
 
@@ -177,7 +184,12 @@ impl Mirror {
 
     /// The mirror's azimuth atan2(r_z, r_y) and its derivative (r_y r_z′ − r_z r_y′)/(r_y² + r_z²).
     fn at(&self, gamma: f64) -> MirrorAt {
-        let r = self.mirror(gamma);
+        self.at_mirror(gamma, &self.mirror(gamma))
+    }
+
+    /// [`Mirror::at`] of an already reflected direction.
+    #[inline]
+    fn at_mirror(&self, gamma: f64, r: &Reflected) -> MirrorAt {
         let bravais = -2.0 * gamma;
         MirrorAt {
             sin_theta: r.x,
@@ -280,7 +292,8 @@ impl Mirror {
     /// instead of crossing φ, and the bracket then closes on the jump, which no offset sends
     /// light through.
     fn finish(&self, gamma: f64, phi: f64) -> Option<MirrorOffset> {
-        let at = self.at(gamma);
+        let r = self.mirror(gamma);
+        let at = self.at_mirror(gamma, &r);
         let (h, cos_gamma) = (at.sin_gamma, at.cos_gamma);
         let sin_theta = at.sin_theta.clamp(-1.0, 1.0);
         (at.slope < 0.0 && (at.phi - phi).abs() < 1e-9).then(|| MirrorOffset {
@@ -288,7 +301,43 @@ impl Mirror {
             dh_dphi: cos_gamma / -at.slope,
             theta: asin_fast(sin_theta),
             sin_theta,
+            spread: self.spread(r, at.slope),
         })
+    }
+
+    /// R's longitudinal spread at a fixed azimuth: how far θ_o moves per unit slope of the
+    /// micro-normal, over the two slope axes in quadrature. A slope s along the scale's
+    /// tangent t (toward the axis) or across it, b = (0, sin γ, cos γ), turns the normal by
+    /// dn = s t or s b and the mirror by dr = 2((ω_i·dn) n + (ω_i·n) dn), which moves θ_o by
+    /// dr_x / cos θ_o and φ by (r_y dr_z − r_z dr_y) / cos²θ_o. The light that leaves at φ
+    /// after that turn is the mirror of a neighbouring offset, whose cone differs by
+    /// (dθ/dφ) Δφ along the curve of mirrors, so at fixed φ θ_o spreads by
+    /// Δθ − (dθ/dφ) Δφ per unit slope.
+    ///
+    /// Untilted, only the axial slope moves θ_o, by 2 cos γ, and the curve is flat (θ_o = −θ_i),
+    /// which is d'Eon et al. 2014 eq. 6. A tilt lets the in-plane slope move θ_o (the normal
+    /// has an axial part sin α that ω_i·n scales), changes ω_i·n and cos θ_o, and tilts the
+    /// curve. The simulation's R follows it where eq. 6 misses by a quarter
+    /// (`crates/validate/tests/tilted_r_width.rs`; docs/validation.md, departure 10).
+    fn spread(&self, r: Reflected, slope: f64) -> f64 {
+        let (sa, ca) = (self.sin_alpha, self.cos_alpha);
+        let (sg, cg) = (r.sin_gamma, r.cos_gamma);
+        let n = DVec3::new(sa, ca * cg, -ca * sg);
+        let wi = DVec3::new(self.sin_theta, self.cos_theta, 0.0);
+        let wn = wi.dot(n);
+        let across2 = (r.y * r.y + r.z * r.z).max(1e-300);
+        let cos_o = across2.sqrt();
+        // Along the curve of mirrors: dθ/dγ = (dr_x/dγ) / cos θ_o, dr_x/dγ = 2 (ω_i·dn/dγ) sin α.
+        let dtheta_dphi = 2.0 * sa * (-self.cos_theta * ca * sg) / cos_o / slope;
+        let at_fixed_phi = |dn: DVec3| {
+            let dr = 2.0 * (wi.dot(dn) * n + wn * dn);
+            let dtheta = dr.x / cos_o;
+            let dphi = (r.y * dr.z - r.z * dr.y) / across2;
+            dtheta - dtheta_dphi * dphi
+        };
+        let axial = at_fixed_phi(DVec3::new(ca, -sa * cg, sa * sg));
+        let across = at_fixed_phi(DVec3::new(0.0, sg, cg));
+        axial.hypot(across)
     }
 }
 
@@ -342,7 +391,7 @@ mod tests {
 
     /// Newton's solve against its reference twin, the bisection, over θ_i × α × φ (grazing
     /// incidence and both tilt signs, the azimuths past ±π included): the same offsets to 1e-12,
-    /// the same Jacobian to the twin's central difference (1e-7 relative), the same reach;
+    /// the same Jacobian and spread to the twin's central difference (1e-7 relative), the same reach;
     /// except where the azimuth jumps (see [`Mirror::offset`]; at θ_i = ±1.5 with |α| ≥ 4°
     /// the whole front half), which the bisection reports as a root of vanishing Jacobian
     /// and Newton's solve as none.
@@ -351,6 +400,7 @@ mod tests {
         let mut worst_h: f64 = 0.0;
         let mut worst_jacobian: f64 = 0.0;
         let (mut solved, mut jumps) = (0, 0);
+        let mut widest: f64 = 0.0;
         for &theta in &[-1.5, -1.3, -0.75, 0.0, 0.4, 1.1, 1.3, 1.5] {
             for &alpha_deg in &[-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 6.0] {
                 let alpha = f64::to_radians(alpha_deg);
@@ -373,20 +423,76 @@ mod tests {
                         continue;
                     };
                     solved += 1;
+                    widest = widest.max(f.spread);
+                    // Beyond eq. 6's largest (2) only where the mirror passes the pole.
+                    assert!(
+                        f.spread < 3.0 || f.theta.abs() > 1.5,
+                        "θ {theta} α {alpha_deg} φ {phi}"
+                    );
                     worst_h = worst_h
                         .max((f.h - r.h).abs())
                         .max((f.theta - r.theta).abs());
-                    worst_jacobian = worst_jacobian.max((f.dh_dphi - r.dh_dphi).abs() / r.dh_dphi);
+                    worst_jacobian = worst_jacobian
+                        .max((f.dh_dphi - r.dh_dphi).abs() / r.dh_dphi)
+                        .max((f.spread - r.spread).abs() / r.spread.max(1e-3));
                 }
             }
         }
         eprintln!(
             "{solved} solves: h and θ within {worst_h:.1e}, dh/dφ within {worst_jacobian:.1e} \
-             relative; {jumps} jumps"
+             relative; {jumps} jumps; spread at most {widest:.3}"
         );
         assert!(solved > 18_000, "{solved} {jumps}");
         assert!(worst_h < 1e-12, "{worst_h}");
         assert!(worst_jacobian < 1e-7, "{worst_jacobian}");
+        assert!(widest.is_finite() && widest < 8.0, "{widest}");
+    }
+
+    /// The spread at fixed φ against a numerical derivative that knows nothing of its algebra:
+    /// turn the micro-normal by a small slope along the scale's tangent or across it, reflect,
+    /// and measure how far the new direction's θ_o lies from the cone of the mirror that leaves
+    /// at its φ (found by [`tilted_mirror_offset`]).
+    #[test]
+    fn spread_is_the_numerical_change_of_theta_at_fixed_phi() {
+        let mut compared = 0;
+        for &theta in &[-0.9f64, 0.3, 1.1, 1.3] {
+            for &alpha_deg in &[-4.0, 0.0, 2.0, 5.0] {
+                let alpha = f64::to_radians(alpha_deg);
+                for &h in &[-0.85, -0.3, 0.0, 0.5, 0.9] {
+                    let gamma = f64::asin(h);
+                    let n = DVec3::new(alpha.sin(), alpha.cos() * gamma.cos(), -alpha.cos() * h);
+                    let tangent =
+                        DVec3::new(alpha.cos(), -alpha.sin() * gamma.cos(), alpha.sin() * h);
+                    let across = DVec3::new(0.0, h, gamma.cos());
+                    let wi = DVec3::new(theta.sin(), theta.cos(), 0.0);
+                    let phi = tilted_mirror(theta, alpha, h).phi;
+                    let Some(m) = tilted_mirror_offset(theta, alpha, phi) else {
+                        continue;
+                    };
+                    // θ_o off the curve of mirrors after turning the normal by slope s along dm.
+                    let off_curve = |dm: DVec3, s: f64| {
+                        let micro = (n + s * dm).normalize();
+                        let r = 2.0 * wi.dot(micro) * micro - wi;
+                        let phi_r = phi + wrap_pi(r.z.atan2(r.y) - phi);
+                        let curve = tilted_mirror_offset(theta, alpha, phi_r).unwrap();
+                        r.x.asin() - curve.theta
+                    };
+                    let e = 1e-5;
+                    let d = |dm| (off_curve(dm, e) - off_curve(dm, -e)) / (2.0 * e);
+                    let numeric = d(tangent).hypot(d(across));
+                    assert!(
+                        (m.spread - numeric).abs() < 1e-6 * numeric.max(0.1),
+                        "θ {theta} α {alpha_deg} h {h}: {} vs {numeric}",
+                        m.spread
+                    );
+                    if alpha == 0.0 {
+                        assert!((m.spread - 2.0 * gamma.cos()).abs() < 1e-12);
+                    }
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared >= 70, "{compared}");
     }
 
     #[test]

@@ -331,7 +331,7 @@ impl NonSeparable {
         let tilted = self.scales == Scales::Tilted;
         match p {
             // The exact mirror at the offset that reflects to φ (the first of φ, φ − 2π,
-            // φ + 2π that one reaches); v_R = 2β²(1 − h²) (eq. 6).
+            // φ + 2π that one reaches), its variance at fixed φ through the tilted scale.
             0 => match mirrors.iter().flatten().next() {
                 Some(m) => LongitudinalLobe::new(mirror_variance(beta, m), m.theta),
                 None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
@@ -466,10 +466,12 @@ fn shape_variance(theta_i: f64, w: f64) -> f64 {
     (w / cos_d).powi(2)
 }
 
-/// R's variance at the offset of its mirror, v_R = 2β²(1 − h²) (eq. 6).
+/// R's variance at the offset of its mirror: ½β² times the square of the mirror's spread at
+/// fixed φ through the tilted scale ([`MirrorOffset::spread`]), which untilted is eq. 6's
+/// v_R = 2β²(1 − h²).
 #[inline]
 fn mirror_variance(beta: f64, m: &MirrorOffset) -> f64 {
-    2.0 * beta * beta * (1.0 - m.h * m.h)
+    0.5 * beta * beta * m.spread * m.spread
 }
 
 impl FiberModel for NonSeparable {
