@@ -325,19 +325,17 @@ impl Mirror {
         let n = DVec3::new(sa, ca * cg, -ca * sg);
         let wi = DVec3::new(self.sin_theta, self.cos_theta, 0.0);
         let wn = wi.dot(n);
-        let across2 = (r.y * r.y + r.z * r.z).max(1e-300);
-        let cos_o = across2.sqrt();
+        let inv_cos_o = (r.y * r.y + r.z * r.z).max(1e-300).sqrt().recip();
         // Along the curve of mirrors: dθ/dγ = (dr_x/dγ) / cos θ_o, dr_x/dγ = 2 (ω_i·dn/dγ) sin α.
-        let dtheta_dphi = 2.0 * sa * (-self.cos_theta * ca * sg) / cos_o / slope;
+        let dtheta_dphi = 2.0 * sa * (-self.cos_theta * ca * sg) * inv_cos_o / slope;
+        // Δθ − (dθ/dφ) Δφ, both over cos θ_o once more than dr.
         let at_fixed_phi = |dn: DVec3| {
             let dr = 2.0 * (wi.dot(dn) * n + wn * dn);
-            let dtheta = dr.x / cos_o;
-            let dphi = (r.y * dr.z - r.z * dr.y) / across2;
-            dtheta - dtheta_dphi * dphi
+            (dr.x - dtheta_dphi * (r.y * dr.z - r.z * dr.y) * inv_cos_o) * inv_cos_o
         };
         let axial = at_fixed_phi(DVec3::new(ca, -sa * cg, sa * sg));
         let across = at_fixed_phi(DVec3::new(0.0, sg, cg));
-        axial.hypot(across)
+        (axial * axial + across * across).sqrt()
     }
 }
 

@@ -26,6 +26,9 @@
 //! - R leaves by the exact mirror off the tilted scale ([`crate::tilted_mirror`]): its azimuth
 //!   as well as its inclination, where the paper keeps Bravais' φ = −2γ_i, which at grazing
 //!   incidence puts the last reflections before the scales cut R off half a radian short.
+//! - R's width is the mirror's first-order spread at fixed φ through the tilted scale
+//!   ([`MirrorOffset::spread`]), where eq. 6's 2β²(1 − h²) holds only for an untilted one: the
+//!   in-plane slope moves θ_o too, and the curve of mirrors θ_o(φ) tilts.
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
