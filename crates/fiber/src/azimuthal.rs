@@ -101,7 +101,8 @@ pub enum Weighting {
 pub struct AzimuthalScattering {
     pub eta: f64,
     pub mu_a: DVec3,
-    /// Azimuthal variances v_{p,N} for p = 1, 2, 3 (index 0 unused: R has no azimuthal blur).
+    /// Azimuthal variances v_{p,N} for p = 1, 2, 3 (index 0 unused: R has no azimuthal blur
+    /// here; the tilted non-separable model spreads it, `nonseparable::rough_mirror`).
     pub v_n: [f64; 4],
     /// The scale tilt α (radians) A(p, h) is taken at: 0 for d'Eon et al. 2011's smooth fiber,
     /// else through the tilted scales of [`crate::tilted_attenuation`].
@@ -154,7 +155,7 @@ impl AzimuthalScattering {
 
     /// A(0, h) alone: the Fresnel factor (its micro-normal mean when rough), at the tilted
     /// micro-normal when there is a tilt.
-    fn reflectance(&self, theta_i: f64, h: f64) -> f64 {
+    pub(crate) fn reflectance(&self, theta_i: f64, h: f64) -> f64 {
         let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
         if self.scale_tilt == 0.0 && self.rough.is_none() {
             fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta)

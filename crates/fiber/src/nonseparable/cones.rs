@@ -6,7 +6,7 @@ use crate::bravais::azimuthal_deflection;
 use crate::fresnel::fresnel_dielectric;
 use crate::nusselt::AtScale;
 use crate::nusselt::{self, Blocked, Nusselt};
-use crate::special::{asin_fast, normal_quantile, sin_cos_quadrant};
+use crate::special::{asin_fast, sin_cos_quadrant, unit_normal_midpoints};
 use crate::tilted_attenuation::incident;
 use std::cell::Cell;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
@@ -110,16 +110,10 @@ pub fn first_order_tt(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> 
 /// Equal-probability scale tilts per event in [`axial_cut`]: 48² paths per θ_i.
 const TT_TILTS: usize = 48;
 
-/// The standard normal's [`TT_TILTS`] equal-probability midpoints, scaled so that their own
-/// variance is exactly 1 (the midpoints alone fall a few per cent short).
+/// The standard normal's [`TT_TILTS`] equal-probability midpoints of unit variance.
 fn unit_tilts() -> &'static [f64; TT_TILTS] {
     static TILTS: OnceLock<[f64; TT_TILTS]> = OnceLock::new();
-    TILTS.get_or_init(|| {
-        let q: [f64; TT_TILTS] =
-            std::array::from_fn(|k| normal_quantile((k as f64 + 0.5) / TT_TILTS as f64));
-        let sd = (q.iter().map(|x| x * x).sum::<f64>() / TT_TILTS as f64).sqrt();
-        q.map(|x| x / sd)
-    })
+    TILTS.get_or_init(unit_normal_midpoints::<TT_TILTS>)
 }
 
 /// The tilted model's TT lobe at offset h: the first-order lobe (the exit's sine before any

@@ -29,6 +29,10 @@
 //! - R's width is the mirror's first-order spread at fixed φ through the tilted scale
 //!   ([`MirrorOffset::spread`]), where eq. 6's 2β²(1 − h²) holds only for an untilted one: the
 //!   in-plane slope moves θ_o too, and the curve of mirrors θ_o(φ) tilts.
+//! - R's azimuth is spread and turned by the rough surface's micro-normals, with the
+//!   simulator's own weights ([`rough_mirror`]), where d'Eon et al. 2011's N_R is the smooth
+//!   mirror's: at grazing offsets the visible micro-normals turn R inward, and past a tilted
+//!   scale's last smooth mirror the rough one still lets R out. Its energy is that rough reflectance's (β ≥ [`rough_mirror::LEAST_BETA`]).
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
@@ -54,6 +58,7 @@
 
 pub mod cones;
 mod lobe_table;
+pub mod rough_mirror;
 mod selection;
 mod tt_offsets;
 
@@ -76,6 +81,7 @@ pub use cones::{
 };
 use glam::DVec3;
 use lobe_table::LobeTable;
+use rough_mirror::RoughMirror;
 use selection::SelectionTable;
 use std::sync::{Arc, OnceLock};
 use tt_offsets::TtOffsets;
@@ -120,6 +126,9 @@ pub struct NonSeparable {
     selection: Option<Arc<SelectionTable>>,
     /// TT's and TRT's longitudinal lobes of the fast path.
     lobes: Option<Arc<LobeTable>>,
+    /// N_R off the rough surface, built on first use (tilted model, β ≥
+    /// [`rough_mirror::LEAST_BETA`]).
+    rough_mirror: OnceLock<Arc<RoughMirror>>,
 }
 
 impl NonSeparable {
@@ -149,6 +158,7 @@ impl NonSeparable {
             tt_offsets: OnceLock::new(),
             selection: None,
             lobes: None,
+            rough_mirror: OnceLock::new(),
         })
     }
 
@@ -156,6 +166,8 @@ impl NonSeparable {
     /// and TRT's lobes (`lobe_table.rs`) and, through tilted scales, its lobe selection
     /// (`selection.rs`).
     pub fn tabulated(mut self) -> Self {
+        // R's spread weighs offsets by the selection this builds.
+        self.rough_mirror = OnceLock::new();
         let lobes = LobeTable::build(|p, theta_i, phi| self.lobe_shape(p, theta_i, phi));
         self.lobes = Some(Arc::new(lobes));
         if self.azimuthal().scale_tilt == 0.0 {
@@ -167,6 +179,23 @@ impl NonSeparable {
         self.deon = self.deon.tabulated_with_selection(&selection);
         self.selection = Some(table);
         self
+    }
+
+    /// N_R off the rough surface ([`rough_mirror`]), in the tilted model where the spread is
+    /// wide enough to tabulate; `None` keeps the smooth mirror's N_R.
+    fn rough_mirror(&self) -> Option<&RoughMirror> {
+        let FiberParams {
+            eta, beta, alpha, ..
+        } = self.params;
+        if self.scales != Scales::Tilted || beta < rough_mirror::LEAST_BETA {
+            return None;
+        }
+        let table = self.rough_mirror.get_or_init(|| {
+            Arc::new(RoughMirror::build(alpha, beta, eta, |theta_i, h| {
+                self.lobe_selection(theta_i, h)[0]
+            }))
+        });
+        Some(table)
     }
 
     /// The probabilities of choosing each lobe at offset h: the table's where there is one.
@@ -377,6 +406,9 @@ impl NonSeparable {
 
     /// N_R, from its solved offsets where the scales tilt it.
     fn azimuthal_r(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> DVec3 {
+        if let Some(rough) = self.rough_mirror() {
+            return DVec3::splat(rough.density(theta_i, pair.phi, weighting));
+        }
         let az = self.azimuthal();
         if az.scale_tilt != 0.0 {
             match (&self.selection, weighting) {
@@ -503,7 +535,13 @@ impl FiberModel for NonSeparable {
             1 | 2 => self.sample_fixed_point(wi, p, h, u_phi, [u[2], u[3]]),
             0 => {
                 let phi = match self.scales {
-                    Scales::Tilted => tilted_mirror(wi.theta, self.params.alpha, h).phi,
+                    Scales::Tilted => {
+                        let mirror = tilted_mirror(wi.theta, self.params.alpha, h).phi;
+                        match self.rough_mirror() {
+                            Some(rough) => rough.sample_phi(wi.theta, h, mirror, u_phi),
+                            None => mirror,
+                        }
+                    }
                     Scales::Paper => azimuthal_deflection(0, h, self.params.eta),
                 };
                 (
