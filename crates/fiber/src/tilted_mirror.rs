@@ -39,7 +39,7 @@ pub struct MirrorOffset {
     pub theta: f64,
     /// sin θ_o, which an evaluation of R's lobe takes without the angle.
     pub sin_theta: f64,
-    /// How far θ_o moves per unit micro-normal slope at this azimuth ([`Mirror::spread`]):
+    /// How far θ_o moves per unit micro-normal slope at this azimuth (derived in `Mirror::spread`):
     /// R's longitudinal variance is ½β² spread² (½β² the variance of each Beckmann slope). At
     /// α = 0 it is 2 cos γ, and the variance eq. 6's 2β²(1 − h²).
     pub spread: f64,
