@@ -26,13 +26,12 @@
 //! off a tilted scale leaves below the macro surface, the rough surface still sends part of
 //! the light out (the simulated R reaches past the smooth one there), which the smooth-mirror
 //! reflectance of [`crate::tilted_attenuation`] counts as lost. The lobe selection keeps that
-//! reflectance: it is a proposal, and R's share differs from it by under a per cent of the
-//! incident power.
+//! reflectance: it is a proposal, which need not follow S exactly, only cover it.
 
 use crate::azimuthal::Weighting;
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
-use crate::special::{normal_pdf_fast, normal_quantile_fast, unit_normal_midpoints};
+use crate::special::{asin_fast, normal_pdf_fast, normal_quantile_fast, unit_normal_midpoints};
 use crate::table::{bilinear, fill_rows, locate};
 use crate::tilted_mirror::tilted_mirror;
 use glam::DVec3;
@@ -269,7 +268,7 @@ impl RoughMirror {
     /// φ_m + μ + s Φ⁻¹(u).
     #[inline]
     pub fn sample_phi(&self, theta_i: f64, h: f64, mirror_phi: f64, u: f64) -> f64 {
-        let AzimuthSpread { mean, sd, .. } = self.spread(theta_i, h.clamp(-1.0, 1.0).asin());
+        let AzimuthSpread { mean, sd, .. } = self.spread(theta_i, asin_fast(h.clamp(-1.0, 1.0)));
         mirror_phi + mean + sd * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16))
     }
 }
