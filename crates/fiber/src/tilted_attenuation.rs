@@ -121,7 +121,7 @@ impl<'a> Surface<'a> {
     }
 
     /// Flat and smooth: d'Eon et al. 2011's fiber, whose A(p, h) has a closed form.
-    fn is_flat_and_smooth(&self) -> bool {
+    pub(crate) fn is_flat_and_smooth(&self) -> bool {
         self.alpha == 0.0 && self.rough.is_none()
     }
 
