@@ -37,6 +37,8 @@ fn main() -> ExitCode {
     let wo = FiberAngles::from_dir(DVec3::new(-0.2, -0.5, 0.7).normalize());
     let s = model.eval(wi, wo).total().x;
     let first = start.elapsed().as_secs_f64() - tables;
-    println!("α {alpha_deg}° β {beta}: tables {tables:.2} s, first evaluation {first:.2} s (S {s:.6e})");
+    println!(
+        "α {alpha_deg}° β {beta}: tables {tables:.2} s, first evaluation {first:.2} s (S {s:.6e})"
+    );
     ExitCode::SUCCESS
 }

@@ -6,7 +6,7 @@ use crate::metrics::{LobeFigures, lobe_figures};
 use crate::models::ModelKind;
 use crate::pixel_integral::{PixelRule, integrate_lobes};
 use crate::sweep_dir::SimConfig;
-use cuticle_fiber::LatLongImage;
+use cuticle_fiber::{FiberModel, LatLongImage};
 
 /// The figures of one (configuration, model) pair, lobes in the order R, TT, TRT, TRRT, rest.
 #[derive(Clone, Debug)]
@@ -21,10 +21,20 @@ pub fn model_images(
     kind: ModelKind,
     grid: cuticle_fiber::LatLongGrid,
 ) -> Result<[LatLongImage; 5], ValidateError> {
+    let model = kind.build(&config.fiber_params())?;
+    Ok(images_of(model.as_ref(), config, grid))
+}
+
+/// `model`'s five lobe images for `config` on `grid`, by the default [`PixelRule`]: the model
+/// must be the one for `config`'s fiber ([`crate::models::FiberModels`] keeps it).
+pub fn images_of(
+    model: &dyn FiberModel,
+    config: &SimConfig,
+    grid: cuticle_fiber::LatLongGrid,
+) -> [LatLongImage; 5] {
     let params = config.fiber_params();
-    let model = kind.build(&params)?;
     let rule = PixelRule::for_fiber(params.eta, params.alpha, params.beta);
-    Ok(integrate_lobes(model.as_ref(), config.theta_i, grid, &rule))
+    integrate_lobes(model, config.theta_i, grid, &rule)
 }
 
 /// The figures of `kind` against the simulated lobe images `sim` of `config`.

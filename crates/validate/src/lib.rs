@@ -29,7 +29,7 @@ pub mod summary;
 pub mod summary_verdict;
 pub mod sweep_dir;
 
-pub use compare::{ConfigFigures, compare_config, model_images};
+pub use compare::{ConfigFigures, compare_config, images_of, model_images};
 pub use error::ValidateError;
 pub use metrics::{LobeFigures, lobe_figures};
 pub use models::ModelKind;

@@ -81,6 +81,47 @@ impl ModelKind {
     }
 }
 
+/// The models of one fiber, each built on first use and kept while the configurations that
+/// follow share that fiber: a validation visits its configurations grouped by fiber
+/// ([`crate::sweep_dir::fiber_order`]), so each model is tabulated once per fiber instead of
+/// once per inclination θ_i (the tables, not the comparison, were most of a validation's
+/// time).
+#[derive(Default)]
+pub struct FiberModels {
+    params: Option<FiberParams>,
+    built: Vec<(ModelKind, Box<dyn FiberModel>)>,
+    builds: usize,
+}
+
+impl FiberModels {
+    /// `kind` for `params`: the one built before if the fiber is the same, else a new one (and
+    /// the previous fiber's models are dropped).
+    pub fn get(
+        &mut self,
+        kind: ModelKind,
+        params: &FiberParams,
+    ) -> Result<&dyn FiberModel, ValidateError> {
+        if self.params.as_ref() != Some(params) {
+            self.built.clear();
+            self.params = Some(*params);
+        }
+        let at = match self.built.iter().position(|(k, _)| *k == kind) {
+            Some(at) => at,
+            None => {
+                self.built.push((kind, kind.build(params)?));
+                self.builds += 1;
+                self.built.len() - 1
+            }
+        };
+        Ok(self.built[at].1.as_ref())
+    }
+
+    /// How many models have been built so far.
+    pub fn builds(&self) -> usize {
+        self.builds
+    }
+}
+
 impl FromStr for ModelKind {
     type Err = ValidateError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
@@ -88,5 +129,43 @@ impl FromStr for ModelKind {
             .into_iter()
             .find(|k| k.name() == s)
             .ok_or_else(|| ValidateError::UnknownModel(s.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cuticle_fiber::FiberAngles;
+
+    /// A model is built once per fiber and kind, and is the model `build` makes.
+    #[test]
+    fn fiber_models_build_each_model_once_per_fiber() {
+        let fiber = FiberParams::default();
+        let other = FiberParams {
+            beta: 0.08,
+            ..fiber
+        };
+        let (wi, wo) = (FiberAngles::new(0.3, 0.0), FiberAngles::new(-0.5, 2.0));
+        let fresh = ModelKind::Marschner.build(&fiber).unwrap().eval(wi, wo);
+        let mut models = FiberModels::default();
+        for _ in 0..3 {
+            let kept = models.get(ModelKind::Marschner, &fiber).unwrap();
+            assert_eq!(kept.eval(wi, wo), fresh);
+        }
+        assert_eq!(models.builds(), 1);
+        models.get(ModelKind::DEon2011, &fiber).unwrap();
+        models.get(ModelKind::Marschner, &fiber).unwrap();
+        assert_eq!(models.builds(), 2);
+        let changed = models
+            .get(ModelKind::Marschner, &other)
+            .unwrap()
+            .eval(wi, wo);
+        assert_ne!(changed, fresh);
+        models.get(ModelKind::Marschner, &fiber).unwrap();
+        assert_eq!(
+            models.builds(),
+            4,
+            "a fiber met again after another is built again"
+        );
     }
 }

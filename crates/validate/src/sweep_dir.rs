@@ -262,6 +262,31 @@ fn check_csv(images: &[LatLongImage; 6], csv: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// The order to visit `configs` in: grouped by fiber (η, β, α, μ_a: every parameter but θ_i),
+/// in the order each fiber first appears, each group in its own order, so that a fiber's models
+/// are built once for all its inclinations ([`crate::models::FiberModels`]).
+pub fn fiber_order(configs: &[SimConfig]) -> Vec<usize> {
+    let fiber = |c: &SimConfig| {
+        let p = c.fiber_params();
+        [p.eta, p.beta, p.alpha, p.mu_a.x, p.mu_a.y, p.mu_a.z].map(f64::to_bits)
+    };
+    let mut first_seen: Vec<[u64; 6]> = Vec::new();
+    let mut group = |c: &SimConfig| {
+        let key = fiber(c);
+        first_seen
+            .iter()
+            .position(|k| *k == key)
+            .unwrap_or_else(|| {
+                first_seen.push(key);
+                first_seen.len() - 1
+            })
+    };
+    let groups: Vec<usize> = configs.iter().map(&mut group).collect();
+    let mut order: Vec<usize> = (0..configs.len()).collect();
+    order.sort_by_key(|&i| groups[i]);
+    order
+}
+
 /// The configurations under `root`, sorted by folder name: `root` itself when it holds a
 /// `sim.json`, else every subfolder (but the hidden stages of configurations being written),
 /// each of which must hold one.
@@ -287,4 +312,41 @@ pub fn list_configs(root: &Path) -> Result<Vec<SimConfig>, ValidateError> {
         return Err(ValidateError::Empty(root.to_path_buf()));
     }
     dirs.iter().map(|d| SimConfig::read(d)).collect()
+}
+
+#[cfg(test)]
+mod order_tests {
+    use super::*;
+
+    fn config(name: &str, theta_i: f64, beta: f64, mu_a: f64) -> SimConfig {
+        SimConfig {
+            dir: PathBuf::from(name),
+            name: name.to_string(),
+            theta_i,
+            alpha_deg: -2.0,
+            beta,
+            eta: 1.55,
+            mu_a: [mu_a; 3],
+            rays: 1000,
+            grid: [8, 4],
+            energy: [0.0; 6],
+            seed: Some(1),
+        }
+    }
+
+    /// Folders sort by θ_i first, so one fiber's configurations lie apart; the order groups
+    /// them, fibers in order of first appearance and each group in folder order.
+    #[test]
+    fn fiber_order_groups_the_inclinations_of_each_fiber() {
+        let configs = [
+            config("ti0.25_b0.04_mu0", 0.25, 0.04, 0.0),
+            config("ti0.25_b0.08_mu0", 0.25, 0.08, 0.0),
+            config("ti0.25_b0.04_mu0.5", 0.25, 0.04, 0.5),
+            config("ti0.75_b0.04_mu0", 0.75, 0.04, 0.0),
+            config("ti0.75_b0.08_mu0", 0.75, 0.08, 0.0),
+            config("ti1.1_b0.04_mu0", 1.1, 0.04, 0.0),
+        ];
+        assert_eq!(fiber_order(&configs), [0, 3, 5, 1, 4, 2]);
+        assert_eq!(fiber_order(&[]), Vec::<usize>::new());
+    }
 }

@@ -13,11 +13,13 @@ use anyhow::{Context, Result, bail};
 use cuticle_fiber::ranges;
 use cuticle_fiber::{FiberAngles, LatLongImage, Lobe};
 use cuticle_validate::compare::{figures_of, with_noise};
+use cuticle_validate::models::FiberModels;
 use cuticle_validate::noise::{mean_of, seed_to_seed_l1};
 use cuticle_validate::sheet::{abs_difference, stack, total};
 use cuticle_validate::summary::mean_median;
 use cuticle_validate::sweep_dir::FILES;
-use cuticle_validate::{ModelKind, Row, SimConfig, csv, list_configs, markdown, model_images};
+use cuticle_validate::sweep_dir::fiber_order;
+use cuticle_validate::{ModelKind, Row, SimConfig, csv, images_of, list_configs, markdown};
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -76,8 +78,10 @@ pub fn run(args: Args) -> Result<()> {
     let sheet_set = sheet_indices(configs.len(), args.sheets);
     let start = Instant::now();
     let progress = bar(configs.len() as u64, "validate");
-    let mut rows = Vec::new();
-    for (i, config) in configs.iter().enumerate() {
+    let mut rows_of: Vec<Vec<Row>> = vec![Vec::new(); configs.len()];
+    let mut fiber_models = FiberModels::default();
+    for i in fiber_order(&configs) {
+        let config = &configs[i];
         let first = read_lobes(config)?;
         let (sim, noise) = match &twins {
             Some(t) => {
@@ -89,23 +93,25 @@ pub fn run(args: Args) -> Result<()> {
             }
             None => (first, None),
         };
+        let params = config.fiber_params();
         let mut rendered = Vec::new();
         for &kind in &models {
-            let images = model_images(config, kind, sim[0].grid)?;
+            let images = images_of(fiber_models.get(kind, &params)?, config, sim[0].grid);
             let mut figures = figures_of(kind, &images, &sim);
             if let Some(n) = &noise {
                 figures = with_noise(figures, n);
             }
             for lobe in Lobe::ALL {
-                rows.push(Row::new(config, kind, lobe, figures.lobes[lobe.index()]));
+                rows_of[i].push(Row::new(config, kind, lobe, figures.lobes[lobe.index()]));
             }
             rendered.push((kind, images));
         }
         if sheet_set.contains(&i) {
-            write_sheet(&mut out, config, &sim, &rendered, &args)?;
+            write_sheet(&mut out, config, &sim, &rendered, &mut fiber_models, &args)?;
         }
         progress.inc(1);
     }
+    let rows = rows_of.concat();
     progress.finish_and_clear();
     let seconds = start.elapsed().as_secs_f64();
 
@@ -191,6 +197,7 @@ fn write_sheet(
     config: &SimConfig,
     sim: &[LatLongImage; 5],
     rendered: &[(ModelKind, [LatLongImage; 5])],
+    fiber_models: &mut FiberModels,
     args: &Args,
 ) -> Result<()> {
     let find = |k: ModelKind| {
@@ -203,9 +210,9 @@ fn write_sheet(
         return Ok(());
     };
     let sim_total = total(sim);
-    let model = ModelKind::NonSeparable.build(&config.fiber_params())?;
+    let model = fiber_models.get(ModelKind::NonSeparable, &config.fiber_params())?;
     let sampled = crate::commands::lobes::sample_histogram(
-        model.as_ref(),
+        model,
         FiberAngles::new(config.theta_i, 0.0),
         sim_total.grid,
         args.sheet_samples,
