@@ -227,3 +227,72 @@ fn tilted_deflection_is_the_exit_azimuth_of_an_exact_trace() {
         );
     }
 }
+
+/// The TT exit of the exact trace with the entry and exit scales tilted by their own angles.
+fn tt_exit_tilted(theta_i: f64, [entry, exit]: [f64; 2], h: f64) -> Option<DVec3> {
+    let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
+    let p1 = DVec2::new((1.0 - h * h).sqrt(), -h);
+    let t = refract(-wi, scale_normal(p1, entry), 1.0 / ETA)?;
+    refract(t, -scale_normal(next_point(p1, t), exit), ETA)
+}
+
+/// TT's width through tilted scales (departure 12 of docs/validation.md) is the spread of the
+/// exact trace's exit sine o_u under a Beckmann slope along the axis at each scale (standard
+/// deviation σ = β/√2, two-point Gauss–Hermite: Σ_k ((o_u(α_k + σ) − o_u(α_k − σ))/2)²), as a
+/// lobe variance. The paper's width at θ_d = −θ_i ignores the tilt: it is the same to first
+/// order untilted, too wide for α < 0 and too narrow for α > 0 (by more than a tenth
+/// somewhere here).
+#[test]
+fn tt_width_through_tilted_scales_is_the_exact_traces_spread() {
+    use cuticle_fiber::nonseparable::cones::{
+        first_order_tt_tilted, variance_from_sine_spread, variance_tt,
+    };
+    let beta = 0.04;
+    let sigma = beta / 2f64.sqrt();
+    let mut moved: f64 = 0.0;
+    for theta_i in [0.25, 0.75, 1.1] {
+        for alpha_deg in [-4.0f64, -2.0, 0.0, 2.0] {
+            let alpha = alpha_deg.to_radians();
+            for h in [-0.3, 0.0, 0.3, 0.6] {
+                let sine = |tilts: [f64; 2]| tt_exit_tilted(theta_i, tilts, h).map(|o| o.x);
+                let half_difference = |k: usize| {
+                    let (mut up, mut down) = ([alpha; 2], [alpha; 2]);
+                    up[k] += sigma;
+                    down[k] -= sigma;
+                    Some(0.5 * (sine(up)? - sine(down)?))
+                };
+                let (Some(x), Some(d0), Some(d1)) =
+                    (sine([alpha; 2]), half_difference(0), half_difference(1))
+                else {
+                    continue;
+                };
+                let exact = variance_from_sine_spread(x, d0 * d0 + d1 * d1).sqrt();
+                let lobe = first_order_tt_tilted(theta_i, alpha, ETA, beta, h);
+                let model = lobe.variance.sqrt();
+                assert!(
+                    (model - exact).abs() < 1e-9 * exact && (lobe.sin_cone - x).abs() < 1e-12,
+                    "θ_i {theta_i} α {alpha_deg}° h {h}: model {model} exact {exact}"
+                );
+                let paper = variance_tt(beta, ETA, -theta_i, h).sqrt();
+                if alpha == 0.0 {
+                    assert!(
+                        (paper / exact - 1.0).abs() < 0.01,
+                        "untilted: {paper} vs {exact}"
+                    );
+                } else {
+                    moved = moved.max((paper / exact - 1.0).abs());
+                    assert_eq!(
+                        exact < paper,
+                        alpha < 0.0,
+                        "θ_i {theta_i} α {alpha_deg}° h {h}"
+                    );
+                }
+            }
+        }
+    }
+    eprintln!(
+        "the tilt moves TT's width from the paper's by up to {:.1} %",
+        100.0 * moved
+    );
+    assert!(moved > 0.1);
+}

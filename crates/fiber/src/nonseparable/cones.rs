@@ -107,6 +107,47 @@ pub fn first_order_tt(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> 
     }
 }
 
+/// TT's lobe at offset h through tilted scales, to first order in the slopes: the exit's
+/// sine x before any clamp, and the spread of x through the scales the path meets, each
+/// scale's tilt α perturbed by a Beckmann slope along the axis (standard deviation
+/// σ = β/√2): Var x = Σ_k ((x(α_k + σ) − x(α_k − σ))/2)² over the entry and exit scales, a
+/// two-point Gauss–Hermite rule per scale, which is ½β² Σ_k (∂x/∂α_k)² where x is linear in
+/// the tilts and stays bounded where the exit nears the critical angle and the derivative
+/// diverges. As a lobe variance by [`variance_from_sine_spread`]. Untilted and away from the
+/// pole this is [`variance_tt`] (d'Eon et al. 2014 §2.4, whose θ_o is −θ_i) to first order; a
+/// tilt moves the refractions' angles of incidence and the exit's, and with them the spread:
+/// narrower for α < 0, wider for α > 0, as the simulation's TT is (issue 14, departure 12 of
+/// docs/validation.md).
+pub fn first_order_tt_tilted(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
+    let sigma = beta * FRAC_1_SQRT_2;
+    let incident = incident(theta_i, h);
+    let half_difference = |k: usize| {
+        let (mut up, mut down) = ([alpha; 2], [alpha; 2]);
+        up[k] += sigma;
+        down[k] -= sigma;
+        0.5 * (nusselt::exit_tt(up, eta, incident) - nusselt::exit_tt(down, eta, incident))
+    };
+    let x = nusselt::exit_tt([alpha; 2], eta, incident);
+    let sine_variance = half_difference(0).powi(2) + half_difference(1).powi(2);
+    CutLobe {
+        sin_cone: x,
+        variance: variance_from_sine_spread(x, sine_variance),
+    }
+}
+
+/// The variance v of a longitudinal lobe whose cone has sine x and whose directions' sines
+/// spread with variance `sine_variance`. The lobe is a spherical Gaussian of variance v per
+/// axis about its cone (d'Eon et al. 2011's M integrates one over the azimuth), so to second
+/// order sin θ_o = x + cos θ_c δ_θ − ½x(δ_θ² + δ_φ²) and Var sin θ_o = v cos²θ_c + v² x²;
+/// solved for v. Away from the pole this is the first order, Var sin θ_o / cos²θ_c; at the
+/// pole it is √Var / |x|, where the first order diverges.
+pub fn variance_from_sine_spread(x: f64, sine_variance: f64) -> f64 {
+    let s2 = (x * x).min(1.0);
+    let c2 = 1.0 - s2;
+    // v = (√(c⁴ + 4 s² V) − c²) / (2 s²), written without the cancellation of that form.
+    2.0 * sine_variance / ((c2 * c2 + 4.0 * s2 * sine_variance).sqrt() + c2)
+}
+
 /// Equal-probability scale tilts per event in [`axial_cut`]: 48² paths per θ_i.
 const TT_TILTS: usize = 48;
 
@@ -116,8 +157,9 @@ fn unit_tilts() -> &'static [f64; TT_TILTS] {
     TILTS.get_or_init(unit_normal_midpoints::<TT_TILTS>)
 }
 
-/// The tilted model's TT lobe at offset h: the first-order lobe (the exit's sine before any
-/// clamp, [`variance_tt`]) moved and narrowed as the rough exit cuts it at grazing incidence.
+/// The tilted model's TT lobe at offset h: the first-order lobe through the tilted scales
+/// ([`first_order_tt_tilted`]) moved and narrowed as the rough exit cuts it at grazing
+/// incidence.
 ///
 /// The cut: a path leaves only while its direction stays above the surface of the scale it
 /// leaves through. At grazing incidence the TT cone comes within a few standard deviations of
@@ -131,11 +173,11 @@ fn unit_tilts() -> &'static [f64; TT_TILTS] {
 /// standard deviation. This departs from d'Eon et al. 2014 §2.4, whose lobe is first order
 /// alone.
 pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
-    let at_h = first_order_tt(theta_i, alpha, eta, beta, h);
+    let at_h = first_order_tt_tilted(theta_i, alpha, eta, beta, h);
     let Some(cut) = axial_cut_last(theta_i, alpha, eta, beta) else {
         return at_h;
     };
-    let centre = first_order_tt(theta_i, alpha, eta, beta, 0.0);
+    let centre = first_order_tt_tilted(theta_i, alpha, eta, beta, 0.0);
     CutLobe {
         sin_cone: at_h.sin_cone + (cut.sin_cone - centre.sin_cone),
         variance: at_h.variance * (cut.variance / centre.variance).min(1.0),
@@ -165,7 +207,8 @@ fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLo
 /// grid of equal-probability tilts at entry and exit, followed through the rotation sequence,
 /// weighted by both Fresnel transmissions and the cosines that make a micro-normal more or
 /// less visible, the paths the exit totally reflects left out. The mean exit sine, and the
-/// variance of the exit sine over cos²θ_d: [`variance_tt`] to first order. `None` where no
+/// variance of the exit sine as a lobe variance ([`variance_from_sine_spread`]):
+/// [`first_order_tt_tilted`] to first order. `None` where no
 /// path leaves, and faded to first order where almost none does (`FADE`).
 pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
     let sigma = beta * FRAC_1_SQRT_2;
@@ -197,15 +240,14 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
         return None;
     }
     let mean = m1 / m0;
-    let cos_d = theta_i.cos().abs().max(1e-6);
     let cut = CutLobe {
         sin_cone: mean,
-        variance: (m2 / m0 - mean * mean).max(0.0) / (cos_d * cos_d),
+        variance: variance_from_sine_spread(mean, (m2 / m0 - mean * mean).max(0.0)),
     };
     // Where the exit lets out under FADE of what arrives there, the few paths left decide
     // the moments, and the last to go would leave a jump to `None`: fade to first order.
     let fade = (m0 / (arriving * FADE)).min(1.0);
-    let first = first_order_tt(theta_i, alpha, eta, beta, 0.0);
+    let first = first_order_tt_tilted(theta_i, alpha, eta, beta, 0.0);
     Some(CutLobe {
         sin_cone: first.sin_cone + fade * (cut.sin_cone - first.sin_cone),
         variance: first.variance + fade * (cut.variance - first.variance),
@@ -318,6 +360,49 @@ pub fn tt_offset_reference(phi: f64, eta_prime: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::frame::wrap_pi;
+
+    /// The spread of sin θ_o over a spherical Gaussian about a cone (tangent offsets of
+    /// variance v per axis: a radius with r² = −2v ln(1 − u) and an angle, on a 4,096 × 64 grid
+    /// of midpoints of u and the angle, mapped to the sphere exactly) is what
+    /// [`variance_from_sine_spread`] inverts: v back within 0.3 % for v ≤ 1e-3 (standard
+    /// deviations up to 1.8°) and 2 % at 1e-2 (5.7°), from the equator to 0.2° off the pole,
+    /// where the first order v ≈ Var/cos²θ_c misses by up to 50 times.
+    #[test]
+    fn sine_spread_inverts_the_spread_of_a_spherical_gaussian() {
+        let (radii, angles) = (4096, 64);
+        let mut first_order_worst: f64 = 1.0;
+        for theta_c in [0.0f64, 0.5, 1.2, 1.5, 1.567] {
+            for v in [1e-4f64, 1e-3, 1e-2] {
+                let (sc, cc) = theta_c.sin_cos();
+                let (mut m1, mut m2) = (0.0, 0.0);
+                for k in 0..radii {
+                    let u = (k as f64 + 0.5) / radii as f64;
+                    let r = (-2.0 * v * (1.0 - u).ln()).sqrt();
+                    for j in 0..angles {
+                        let psi = std::f64::consts::TAU * (j as f64 + 0.5) / angles as f64;
+                        // exp map: cos r · cone + sin r · unit tangent (θ part cos ψ).
+                        let x = r.cos() * sc + r.sin() * psi.cos() * cc;
+                        m1 += x;
+                        m2 += x * x;
+                    }
+                }
+                let n = (radii * angles) as f64;
+                let var = m2 / n - (m1 / n).powi(2);
+                let back = variance_from_sine_spread(sc, var);
+                let bound = if v <= 1e-3 { 3e-3 } else { 0.02 };
+                assert!(
+                    (back / v - 1.0).abs() < bound,
+                    "θ_c {theta_c} v {v}: {back}"
+                );
+                first_order_worst = first_order_worst.max(var / (cc * cc) / v);
+            }
+        }
+        assert!(first_order_worst > 50.0, "{first_order_worst}");
+        // Away from the pole it is the first order.
+        let (x, var) = (0.5f64, 1e-6);
+        let first = var / (1.0 - x * x);
+        assert!((variance_from_sine_spread(x, var) / first - 1.0).abs() < 1e-5);
+    }
 
     #[test]
     fn r_cone_from_rotations_matches_the_closed_form() {

@@ -37,8 +37,11 @@
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
+//! - TT's width is the spread of its exit through the tilted scales
+//!   ([`cones::first_order_tt_tilted`]), where §2.4's D_TT holds only for untilted ones (a
+//!   tilt moves both refractions' angles of incidence), kept bounded near the pole.
 //! - TT's lobe is cut where a rough exit meets the surface at grazing incidence
-//!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than §2.4's first order.
+//!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than the first order.
 //! - N_TT is centred on TT's exit azimuth through the tilted scales
 //!   ([`crate::tilted_deflection`]), not Bravais' Φ(1, h): a tilt changes the in-plane angle
 //!   of every chord and of the exit. TT's cone keeps the offset Bravais' Φ selects, and TRT
@@ -595,7 +598,9 @@ mod tests {
     /// largest and the mean error of TT's and TRT's cones, and the largest relative error of
     /// their widths √v. Measured: cones within 6.7e-3 rad (TT, at kinks of the Nusselt
     /// rotations near grazing exits) and 2.5e-3 rad (TRT), 7e-6 rad on average; widths within
-    /// 2.3e-3 (TT) and 1e-6 (TRT).
+    /// 2.3e-3 (the paper's TT) and 1e-6 (TRT). The tilted TT width (departure 12) has kinks
+    /// where its exit nears the critical angle and the half-differences of its spread reach
+    /// the clamp: within 3.6e-2 there, 2.1e-4 on average.
     #[test]
     fn lobe_table_follows_the_exact_lobes() {
         for (scales, alpha_deg) in [
@@ -612,6 +617,7 @@ mod tests {
                 .unwrap()
                 .tabulated();
             let (mut worst, mut sum, mut width) = ([0.0f64; 2], [0.0f64; 2], [0.0f64; 2]);
+            let mut width_sum = [0.0f64; 2];
             let n = 300;
             for i in 0..n {
                 let theta_i = -1.55 + 3.1 * (i as f64 + 0.37) / n as f64;
@@ -625,18 +631,28 @@ mod tests {
                         sum[l] += e;
                         let w = (got.v.sqrt() - want.v.sqrt()).abs() / want.v.sqrt();
                         width[l] = width[l].max(w);
+                        width_sum[l] += w;
                     }
                 }
             }
             let mean = sum.map(|s| s / (n * n) as f64);
+            let width_mean = width_sum.map(|s| s / (n * n) as f64);
             eprintln!(
                 "{scales:?} α {alpha_deg}°: cone TT {:.1e} TRT {:.1e} rad (mean {:.1e}, {:.1e}), \
-                 width TT {:.1e} TRT {:.1e}",
-                worst[0], worst[1], mean[0], mean[1], width[0], width[1]
+                 width TT {:.1e} TRT {:.1e} (mean {:.1e}, {:.1e})",
+                worst[0],
+                worst[1],
+                mean[0],
+                mean[1],
+                width[0],
+                width[1],
+                width_mean[0],
+                width_mean[1]
             );
             assert!(worst[0] < 0.01 && worst[1] < 4e-3, "{worst:?}");
             assert!(mean[0] < 2e-5 && mean[1] < 2e-5, "{mean:?}");
-            assert!(width[0] < 4e-3 && width[1] < 1e-5, "{width:?}");
+            assert!(width[0] < 0.05 && width[1] < 1e-5, "{width:?}");
+            assert!(width_mean[0] < 5e-4, "{width_mean:?}");
         }
     }
 
