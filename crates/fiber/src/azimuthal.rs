@@ -132,6 +132,12 @@ impl AzimuthalScattering {
         self
     }
 
+    /// The same terms with lobe p's azimuthal variance v_{p,N} set to `variance`.
+    pub fn with_azimuthal_variance(mut self, p: usize, variance: f64) -> Self {
+        self.v_n[p] = variance;
+        self
+    }
+
     /// The same terms with A(p, h) taken with the micro-normal means of the Fresnel factors of
     /// a surface of Beckmann roughness `beta` ([`crate::rough_interface`]), shared per (β, η).
     pub fn with_rough_surface(mut self, beta: f64) -> Self {

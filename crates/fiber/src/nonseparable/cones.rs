@@ -259,6 +259,18 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
 /// stays continuous in θ_i where TT goes dark.
 const FADE: f64 = 0.05;
 
+/// TRT's azimuthal variance in the tilted model: β², where d'Eon et al. 2014 §2.5 takes 2β²
+/// (d'Eon et al. 2011's v_{2,N}). To first order, a Beckmann slope across the fiber
+/// (standard deviation β/√2) at each of TRT's three events turns its exit azimuth by about
+/// 0.9, 0.8 and −0.6 times the slope at h = 0 (θ_i = 0.25), and by 1, 0 and −1 at the caustic
+/// that shapes the lobe at small θ_i, so its spread is about β there, not √2 β
+/// (`tests/tilted_tir.rs` measures it on an exact trace; departure 13 of docs/validation.md).
+/// Untilted; a tilt, other offsets and the caustics of steeper incidence add the axial slopes'
+/// share and more, which a constant leaves out.
+pub fn trt_azimuthal_variance(beta: f64) -> f64 {
+    beta * beta
+}
+
 /// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
     let (s, c) = theta_d.sin_cos();

@@ -37,6 +37,9 @@
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
+//! - TRT's azimuthal width is β ([`cones::trt_azimuthal_variance`]), the first-order spread
+//!   of its exit azimuth under the slopes across the fiber at its three events, where §2.5
+//!   takes d'Eon et al. 2011's √2 β, which blurs its caustic.
 //! - TT's width is the spread of its exit through the tilted scales
 //!   ([`cones::first_order_tt_tilted`]), where §2.4's D_TT holds only for untilted ones (a
 //!   tilt moves both refractions' angles of incidence), kept bounded near the pole.
@@ -152,7 +155,8 @@ impl NonSeparable {
             Scales::Paper => az,
             Scales::Tilted => az
                 .with_scale_tilt(params.alpha)
-                .with_rough_surface(params.beta),
+                .with_rough_surface(params.beta)
+                .with_azimuthal_variance(2, cones::trt_azimuthal_variance(params.beta)),
         };
         Ok(Self {
             params,
