@@ -53,7 +53,7 @@
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
-//! TRT's cones and widths from `lobe_table.rs` and, through tilted scales, the lobe-selection
+//! TRT's cones and widths from `lobe_table.rs` and, in the tilted model, the lobe-selection
 //! probabilities from `selection.rs`; the model without tables is the reference they are
 //! measured against.
 //!
@@ -171,14 +171,15 @@ impl NonSeparable {
     }
 
     /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]), TT's
-    /// and TRT's lobes (`lobe_table.rs`) and, through tilted scales, its lobe selection
-    /// (`selection.rs`).
+    /// and TRT's lobes (`lobe_table.rs`) and, where A(p, h) is a trace through tilted or rough
+    /// scales (the tilted model, at any α), its lobe selection (`selection.rs`): without it a
+    /// sample traces A(p, h) at its offset, and R's rough mirror at every node.
     pub fn tabulated(mut self) -> Self {
         // R's spread weighs offsets by the selection this builds.
         self.rough_mirror = OnceLock::new();
         let lobes = LobeTable::build(|p, theta_i, phi| self.lobe_shape(p, theta_i, phi));
         self.lobes = Some(Arc::new(lobes));
-        if self.azimuthal().scale_tilt == 0.0 {
+        if self.azimuthal().surface().is_flat_and_smooth() {
             self.deon = self.deon.tabulated();
             return self;
         }
@@ -724,9 +725,15 @@ mod tests {
     fn sample_weights_average_to_the_energy_budget() {
         use crate::testing::{check_weights, uniform4};
         use rand_core::SeedableRng;
-        for (n, (theta_i, alpha_deg)) in [(1.1, 2.0), (0.75, 4.0), (-1.3, -2.0), (0.3, -2.0)]
-            .into_iter()
-            .enumerate()
+        for (n, (theta_i, alpha_deg)) in [
+            (1.1, 2.0),
+            (0.75, 4.0),
+            (-1.3, -2.0),
+            (0.3, -2.0),
+            (0.9, 0.0),
+        ]
+        .into_iter()
+        .enumerate()
         {
             let params = FiberParams {
                 eta: 1.55,
