@@ -271,6 +271,15 @@ pub fn trt_azimuthal_variance(beta: f64) -> f64 {
     beta * beta
 }
 
+/// TRRT's azimuthal variance in the tilted model: 12 β², where d'Eon et al. 2014 keeps
+/// d'Eon et al. 2011's 2β². With two internal reflections, the slopes at TRRT's four events
+/// spread its exit azimuth by 3.3–3.7 β to first order (θ_i from 0.25 to 0.75, h ≤ 0.6, an
+/// exact trace in `tests/tilted_tir.rs`; departure 13 of docs/validation.md), so the model
+/// takes (2√3 β)², not (√2 β)².
+pub fn trrt_azimuthal_variance(beta: f64) -> f64 {
+    12.0 * beta * beta
+}
+
 /// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
     let (s, c) = theta_d.sin_cos();

@@ -37,9 +37,10 @@
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.
-//! - TRT's azimuthal width is β ([`cones::trt_azimuthal_variance`]), the first-order spread
-//!   of its exit azimuth under the slopes across the fiber at its three events, where §2.5
-//!   takes d'Eon et al. 2011's √2 β, which blurs its caustic.
+//! - TRT's and TRRT's azimuthal widths are β and 2√3 β ([`cones::trt_azimuthal_variance`],
+//!   [`cones::trrt_azimuthal_variance`]), the first-order spreads of their exit azimuths under
+//!   the micro-normal slopes at their events, where §2.5 keeps d'Eon et al. 2011's √2 β for
+//!   both: TRT's caustic was blurred, TRRT too narrow.
 //! - TT's width is the spread of its exit through the tilted scales
 //!   ([`cones::first_order_tt_tilted`]), where §2.4's D_TT holds only for untilted ones (a
 //!   tilt moves both refractions' angles of incidence), kept bounded near the pole.
@@ -156,7 +157,8 @@ impl NonSeparable {
             Scales::Tilted => az
                 .with_scale_tilt(params.alpha)
                 .with_rough_surface(params.beta)
-                .with_azimuthal_variance(2, cones::trt_azimuthal_variance(params.beta)),
+                .with_azimuthal_variance(2, cones::trt_azimuthal_variance(params.beta))
+                .with_azimuthal_variance(3, cones::trrt_azimuthal_variance(params.beta)),
         };
         Ok(Self {
             params,
