@@ -19,8 +19,8 @@ use glam::DVec3;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-/// Nodes per panel of the composite rule.
-const PANEL_NODES: usize = 16;
+/// Nodes per panel of the composite rule (here and in the azimuthal table's quadrature).
+pub(crate) const PANEL_NODES: usize = 16;
 /// The most panels one integral uses (β ≈ 0.002 reaches it).
 const MAX_PANELS: usize = 1024;
 
@@ -326,8 +326,9 @@ impl AzimuthalScattering {
         }
     }
 
-    /// Panels such that Φ moves by at most a third of the lobe's standard deviation per node.
-    fn panel_count(&self, p: usize, eta_p: f64) -> usize {
+    /// Panels such that Φ moves by at most a third of the lobe's standard deviation per node,
+    /// for the deflection at η′ (`eta_p` = η bounds every θ_d).
+    pub(crate) fn panel_count(&self, p: usize, eta_p: f64) -> usize {
         let slope = deflection_slope_bound(p, eta_p);
         let sigma = self.v_n[p].sqrt();
         let per_panel = PANEL_NODES as f64 * sigma / 3.0;

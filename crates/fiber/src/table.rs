@@ -10,7 +10,9 @@
 //! β ≈ 0.02 the cap binds and the table blurs the narrowest lobes. Its error against direct
 //! quadrature is measured in the tests below and in BENCHMARKS.md.
 
-use crate::azimuthal::{AzimuthalScattering, Weighting, rest_integral, selection_from};
+use crate::azimuthal::{
+    AzimuthalScattering, PANEL_NODES, Weighting, rest_integral, selection_from,
+};
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::wrap_pi;
 use crate::lobe::LobeValues;
@@ -24,8 +26,6 @@ const MIN_PHI_NODES: usize = 64;
 const MAX_PHI_NODES: usize = 1024;
 /// Lobes tabulated over (θ_i, θ_d, φ): TT, TRT, TRRT.
 const BLURRED: [usize; 3] = [1, 2, 3];
-/// Nodes per γ panel of the quadrature that fills the table.
-const PANEL_NODES: usize = 16;
 
 /// The lobe-selection probabilities at (θ_i, h) a sampler chooses with
 /// ([`AzimuthalTable::build_with_selection`]).
@@ -298,14 +298,6 @@ struct RowNode {
     sel: [f64; 3],
 }
 
-/// Panels of [`PANEL_NODES`] nodes over γ ∈ [−π/2, π/2] such that Φ(p, h) moves by at most a
-/// third of lobe p's standard deviation per node.
-fn panels_for(az: &AzimuthalScattering, p: usize) -> usize {
-    let sigma = az.v_n[p].sqrt();
-    let slope = 2.0f64.max(2.0 * p as f64 / az.eta - 2.0);
-    ((slope * PI / (PANEL_NODES as f64 * sigma / 3.0)).ceil() as usize).clamp(2, 1024)
-}
-
 /// Evenly spaced offsets γ at which a row traces A(p, h) through tilted or rough scales where
 /// its quadrature has more nodes than this; the nodes then interpolate A linearly between them
 /// ([`TracedRow`]). Its error against A traced at every node is measured in
@@ -320,7 +312,7 @@ const TRACED_OFFSETS: usize = 1024;
 fn row_nodes(az: &AzimuthalScattering, selection: Option<Selection>, theta_i: f64) -> Vec<RowNode> {
     let panels = BLURRED
         .iter()
-        .map(|&p| panels_for(az, p))
+        .map(|&p| az.panel_count(p, az.eta))
         .max()
         .unwrap_or(2);
     if az.surface().is_flat_and_smooth() || panels * PANEL_NODES <= TRACED_OFFSETS {
@@ -785,7 +777,11 @@ mod tests {
         let az = AzimuthalScattering::new(1.55, beta, DVec3::new(0.1, 0.4, 1.2))
             .with_scale_tilt((-4.0f64).to_radians())
             .with_rough_surface(beta);
-        let panels = BLURRED.iter().map(|&p| panels_for(&az, p)).max().unwrap();
+        let panels = BLURRED
+            .iter()
+            .map(|&p| az.panel_count(p, az.eta))
+            .max()
+            .unwrap();
         assert!(
             panels * PANEL_NODES > TRACED_OFFSETS,
             "the rows must interpolate"

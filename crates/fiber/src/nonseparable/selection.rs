@@ -4,9 +4,9 @@
 //! proportional to the channel mean of A(p, h) (d'Eon et al. 2013); the pdf weighs R's
 //! offsets by the same probability. In the tilted model A(p, h) is a trace of every lobe's
 //! rotations and rough Fresnel factors ([`crate::tilted_attenuation`]), at α = 0 too, the
-//! dearest part of a sample or a pdf. The probabilities are a proposal: any that `sample` draws with and `pdf`
-//! reports alike serve. So the fast path reads them from this table, bilinear in (θ_i, h)
-//! and normalised to sum 1, in both. Where the tilted scales lose everything at all four
+//! dearest part of a sample or a pdf. The probabilities are a proposal: any that `sample`
+//! draws with and `pdf` reports alike serve. So the fast path reads them from this table,
+//! bilinear in (θ_i, h) and normalised to sum 1, in both. Where the tilted scales lose everything at all four
 //! corners of a cell the table gives 0 and the sampler draws nothing, as the exact model does
 //! at such an offset. The azimuthal table's TT, TRT, TRRT and remainder densities are built
 //! from these probabilities too ([`crate::table::AzimuthalTable::build_with_selection`]), so
