@@ -13,7 +13,7 @@ use crate::lobe::{LobeValues, channel_mean};
 use crate::rough_interface::RoughInterface;
 use crate::special::{GaussLegendre, normal_pdf_fast};
 use crate::tilted_attenuation::{Surface, tilted_attenuation, tilted_reflectance};
-use crate::tilted_deflection::deflection_shift;
+use crate::tilted_deflection::{ReadAt, deflection_shift};
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror_offsets};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -314,14 +314,15 @@ impl AzimuthalScattering {
         azimuthal_deflection(p as u32, h, eta_p) + self.deflection_shift(p, theta_i, h)
     }
 
-    /// What the scale tilt adds to TT's Φ(1, h) ([`deflection_shift`]); 0 untilted and for the
-    /// other lobes. R's tilted form solves its exact mirror instead. TRT keeps Bravais' Φ: its
-    /// internal reflection off the rough surface turns it more than the tilt does, and shifting
-    /// it by the smooth geometry made every tilted cell of the validation slice worse
-    /// (docs/validation.md, departure 9).
+    /// What the scale tilt adds to TT's and TRT's Φ(p, h) ([`deflection_shift`]); 0 untilted
+    /// and for the other lobes. R's tilted form solves its exact mirror instead. TRRT keeps
+    /// Bravais' Φ: its two internal reflections off the rough surface turn it more than the
+    /// tilt does, and shifting it made the validation worse in 34 of its configurations and
+    /// better in 11 (docs/validation.md, departure 15).
     pub fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
         match p {
-            1 => deflection_shift(1, theta_i, self.scale_tilt, self.eta, h),
+            1 => deflection_shift(1, theta_i, self.scale_tilt, self.eta, h, ReadAt::OwnExit),
+            2 => deflection_shift(2, theta_i, self.scale_tilt, self.eta, h, ReadAt::CentralExit),
             _ => 0.0,
         }
     }

@@ -287,13 +287,13 @@ impl AzimuthalTable {
     }
 }
 
-/// One quadrature node of a θ_i row, shared by the blurred lobes: its offset h, TT's shift of
-/// Φ by the tilt ([`AzimuthalScattering::deflection_shift`]; TRT's and TRRT's is 0), and per
-/// lobe A(p, h) and the selection probability, each times the node's weight.
+/// One quadrature node of a θ_i row, shared by the blurred lobes: its offset h, and per lobe
+/// the shift of Φ by the tilt ([`AzimuthalScattering::deflection_shift`]), A(p, h) and the
+/// selection probability, each of the last two times the node's weight.
 #[derive(Clone, Copy, Debug)]
 struct RowNode {
     h: f64,
-    tt_shift: f64,
+    shift: [f64; 3],
     a: [DVec3; 3],
     sel: [f64; 3],
 }
@@ -352,7 +352,7 @@ fn row_nodes_on(
             };
             RowNode {
                 h,
-                tt_shift: az.deflection_shift(1, theta_i, h),
+                shift: BLURRED.map(|p| az.deflection_shift(p, theta_i, h)),
                 a: BLURRED.map(|p| a.0[p] * weight),
                 sel: BLURRED.map(|p| sel[p] * weight),
             }
@@ -411,8 +411,8 @@ fn splat_row(az: &AzimuthalScattering, nodes: &[RowNode], phi_nodes: usize, row:
             let eta_p = eta_perp_at(az.eta, d);
             acc.fill([0.0; 4]);
             for node in nodes {
-                let shift = if p == 1 { node.tt_shift } else { 0.0 };
-                let center = wrap_pi(azimuthal_deflection(p as u32, node.h, eta_p) + shift);
+                let center =
+                    wrap_pi(azimuthal_deflection(p as u32, node.h, eta_p) + node.shift[l]);
                 let a = node.a[l];
                 splat.add(center, [a.x, a.y, a.z, node.sel[l]], &mut acc);
             }

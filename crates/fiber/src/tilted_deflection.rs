@@ -7,8 +7,9 @@
 //! across it, so the in-plane angle atan(|y| / z) of each chord and of the exit changes, by
 //! up to half a radian of Φ near the edges (docs/validation.md, departure 9;
 //! `tests/tilted_tir.rs` checks this module against an exact 3D trace). The paper's model
-//! keeps Bravais' Φ; the tilted model shifts TT's azimuthal lobe by [`deflection_shift`]
-//! (R has its exact mirror, [`crate::tilted_mirror`]; TRT measured worse shifted).
+//! keeps Bravais' Φ; the tilted model shifts TT's and TRT's azimuthal lobes by
+//! [`deflection_shift`] (R has its exact mirror, [`crate::tilted_mirror`]; TRRT measured worse
+//! shifted) and places TT's cone at [`tilted_tt_offset`].
 //!
 //! With γ_i the in-plane angle of the incident direction to the normal at entry, γ′_k that of
 //! chord k (the same at both of its ends, by the circle's symmetry) and γ_o that of the exit
@@ -16,9 +17,11 @@
 //! Φ = pπ − γ_i − γ_o + 2 Σ_k γ′_k, which is Bravais' Φ where γ_o = γ_i and γ′_k = γ_t.
 
 use crate::bravais::{azimuthal_deflection, eta_prime};
+use crate::frame::wrap_pi;
 use crate::nusselt::{self, AtScale, Nusselt, Tilt};
 use crate::special::atan2_fast;
 use crate::tilted_attenuation::incident;
+use std::cell::Cell;
 use std::f64::consts::PI;
 
 /// The in-plane angle of a Nusselt direction to its normal: atan(|y| / z), z = √(1 − x² − y²).
@@ -27,18 +30,29 @@ fn in_plane((x, y): Nusselt) -> f64 {
     atan2_fast(y.abs(), z)
 }
 
-/// Φ(p, h) of the path entering at offset h through scales tilted by α (the sign of
-/// [`crate::nusselt`]), unwrapped like [`azimuthal_deflection`]; `None` where a smooth surface
-/// blocks the path ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally
-/// reflected).
-pub fn tilted_deflection(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> Option<f64> {
+/// Where the smooth path entering at offset h through scales tilted by α leaves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TiltedExit {
+    /// Φ(p, h), unwrapped like [`azimuthal_deflection`].
+    pub phi: f64,
+    /// The sine of the exit's inclination θ_o.
+    pub sin_theta: f64,
+}
+
+/// The exit of the path entering at offset h through scales tilted by α (the sign of
+/// [`crate::nusselt`]) after p internal chords; `None` where a smooth surface blocks the path
+/// ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally reflected).
+pub fn tilted_exit(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> Option<TiltedExit> {
     let tilt = Tilt::new(alpha);
     let d = incident(theta_i, h);
     let gamma_i = in_plane(d);
     let entry = AtScale::outside(tilt, d).ok()?;
     if p == 0 {
-        let gamma_o = in_plane(entry.reflect().ok()?);
-        return Some(-h.signum() * (gamma_i + gamma_o));
+        let exit = entry.reflect().ok()?;
+        return Some(TiltedExit {
+            phi: -h.signum() * (gamma_i + in_plane(exit)),
+            sin_theta: exit.0,
+        });
     }
     let mut chord = entry.refract(eta).ok()?;
     let mut chords = in_plane(chord);
@@ -53,22 +67,130 @@ pub fn tilted_deflection(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> 
         .ok()?
         .refract(eta)
         .ok()?;
-    Some(p as f64 * PI + h.signum() * (2.0 * chords - gamma_i - in_plane(exit)))
+    Some(TiltedExit {
+        phi: p as f64 * PI + h.signum() * (2.0 * chords - gamma_i - in_plane(exit)),
+        sin_theta: exit.0,
+    })
 }
 
-/// What the tilt adds to Bravais' Φ(p, h) taken with η′(θ_i): [`tilted_deflection`] less its
-/// value at α = 0, and 0 untilted or where the smooth path is blocked. There the light a rough
-/// surface lets through leaves by micro-normals far from the tilted scale's, which this
-/// geometry does not describe, so it keeps Bravais' Φ. The tilted model adds the shift to the
-/// Φ(p, h) of d'Eon et al. 2011's N_p, which takes η′ at θ_d, so that it is that N_p where α = 0.
-pub fn deflection_shift(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> f64 {
+/// Φ(p, h) of [`tilted_exit`].
+pub fn tilted_deflection(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> Option<f64> {
+    tilted_exit(p, theta_i, alpha, eta, h).map(|exit| exit.phi)
+}
+
+/// What the tilt adds to Bravais' Φ(p, h): [`tilted_deflection`] less Bravais' Φ with η′ at
+/// the θ_d where the lobe's N_p is read, and 0 untilted or where the smooth path is blocked.
+/// d'Eon et al. 2011's N_p takes η′ at the θ_d it is evaluated at, so Bravais' Φ plus this
+/// shift is the traced Φ there; [`ReadAt`] says where that is. Where the path is blocked, the
+/// light a rough surface lets through leaves by micro-normals far from the tilted scale's,
+/// which this geometry does not describe, so it keeps Bravais' Φ.
+pub fn deflection_shift(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64, read_at: ReadAt) -> f64 {
     if alpha == 0.0 {
         return 0.0;
     }
-    match tilted_deflection(p, theta_i, alpha, eta, h) {
-        Some(phi) => phi - azimuthal_deflection(p, h, eta_prime(eta, theta_i)),
-        None => 0.0,
+    let Some(exit) = tilted_exit(p, theta_i, alpha, eta, h) else {
+        return 0.0;
+    };
+    let sin_theta_o = match read_at {
+        ReadAt::OwnExit => exit.sin_theta,
+        ReadAt::CentralExit => match tilted_exit(p, theta_i, alpha, eta, 0.0) {
+            Some(central) => central.sin_theta,
+            None => exit.sin_theta,
+        },
+    };
+    let theta_d = 0.5 * (sin_theta_o.clamp(-1.0, 1.0).asin() - theta_i);
+    exit.phi - azimuthal_deflection(p, h, eta_prime(eta, theta_d))
+}
+
+/// Where a lobe's N_p is read for the path entering at h: the θ_d = (θ_o − θ_i) / 2 of its
+/// longitudinal cone. Untilted both are Bravais' own θ_d = −θ_i.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReadAt {
+    /// The cone follows each path's own exit (TT's, at the offset that leaves at φ).
+    OwnExit,
+    /// The cone is the path at h = 0's (TRT's, d'Eon et al. 2014 §2.5).
+    CentralExit,
+}
+
+/// The offset h whose TT path through scales tilted by α leaves at azimuth φ (h takes φ's
+/// sign, as Bravais' offset does): the root of [`tilted_deflection`]`(1, h) = |φ|` among the
+/// offsets whose smooth path leaves, the last of them where |φ| lies beyond their reach.
+/// `None` where the path at h = 0 is blocked. The tilted model places TT's cone here
+/// (docs/validation.md, departure 14), where the exit it describes leaves.
+pub fn tilted_tt_offset(theta_i: f64, alpha: f64, eta: f64, phi: f64) -> Option<f64> {
+    let deflection = |h: f64| tilted_deflection(1, theta_i, alpha, eta, h);
+    let Reach { edge, deflection_at_edge } = reach_last(theta_i, alpha, eta)?;
+    let target = wrap_pi(phi);
+    let a = target.abs();
+    let h = if a <= deflection_at_edge {
+        edge
+    } else {
+        // Φ(1, h) falls from π at h = 0 to its value at the edge.
+        let (mut low, mut high) = (0.0, edge);
+        for _ in 0..OFFSET_BISECTIONS {
+            let mid = 0.5 * (low + high);
+            match deflection(mid) {
+                Some(d) if d > a => low = mid,
+                _ => high = mid,
+            }
+        }
+        0.5 * (low + high)
+    };
+    Some(h.copysign(target))
+}
+
+/// Bisection steps of [`tilted_tt_offset`]: h to 1e-15.
+const OFFSET_BISECTIONS: usize = 50;
+
+/// The last offset h ≥ 0 whose smooth TT path leaves, and where it leaves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Reach {
+    edge: f64,
+    deflection_at_edge: f64,
+}
+
+/// TT's [`Reach`], the blocked offsets taken as one band at the fiber's edge; `None` where
+/// the path at h = 0 is blocked too.
+fn reach(theta_i: f64, alpha: f64, eta: f64) -> Option<Reach> {
+    const NEAR_EDGE: f64 = 1.0 - 1e-9;
+    let deflection = |h: f64| tilted_deflection(1, theta_i, alpha, eta, h);
+    deflection(0.0)?;
+    let edge = if deflection(NEAR_EDGE).is_some() {
+        NEAR_EDGE
+    } else {
+        let (mut low, mut high) = (0.0, NEAR_EDGE);
+        for _ in 0..OFFSET_BISECTIONS {
+            let mid = 0.5 * (low + high);
+            if deflection(mid).is_some() {
+                low = mid;
+            } else {
+                high = mid;
+            }
+        }
+        low
+    };
+    Some(Reach {
+        edge,
+        deflection_at_edge: deflection(edge)?,
+    })
+}
+
+/// [`reach`], kept for the last arguments on each thread: the lobe table asks for a whole row
+/// of φ at one θ_i.
+fn reach_last(theta_i: f64, alpha: f64, eta: f64) -> Option<Reach> {
+    type Last = Option<([f64; 3], Option<Reach>)>;
+    thread_local! {
+        static LAST: Cell<Last> = const { Cell::new(None) };
     }
+    let key = [theta_i, alpha, eta];
+    LAST.with(|last| match last.get() {
+        Some((k, found)) if k == key => found,
+        _ => {
+            let found = reach(theta_i, alpha, eta);
+            last.set(Some((key, found)));
+            found
+        }
+    })
 }
 
 #[cfg(test)]
@@ -120,11 +242,13 @@ mod tests {
     fn shift_is_odd_in_h_and_vanishes_without_tilt() {
         for p in 1..4 {
             for h in [0.1, 0.5, 0.9] {
-                let a = deflection_shift(p, 0.75, -0.07, 1.55, h);
-                let b = deflection_shift(p, 0.75, -0.07, 1.55, -h);
-                assert!((a + b).abs() < 1e-12, "p {p} h {h}: {a} {b}");
-                assert!(a.abs() > 1e-4, "the tilt moves Φ({p}, {h})");
-                assert_eq!(deflection_shift(p, 0.75, 0.0, 1.55, h), 0.0);
+                for read_at in [ReadAt::OwnExit, ReadAt::CentralExit] {
+                    let a = deflection_shift(p, 0.75, -0.07, 1.55, h, read_at);
+                    let b = deflection_shift(p, 0.75, -0.07, 1.55, -h, read_at);
+                    assert!((a + b).abs() < 1e-12, "p {p} h {h}: {a} {b}");
+                    assert!(a.abs() > 1e-4, "the tilt moves Φ({p}, {h})");
+                    assert_eq!(deflection_shift(p, 0.75, 0.0, 1.55, h, read_at), 0.0);
+                }
             }
         }
     }

@@ -46,10 +46,12 @@
 //!   tilt moves both refractions' angles of incidence), kept bounded near the pole.
 //! - TT's lobe is cut where a rough exit meets the surface at grazing incidence
 //!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than the first order.
-//! - N_TT is centred on TT's exit azimuth through the tilted scales
-//!   ([`crate::tilted_deflection`]), not Bravais' Φ(1, h): a tilt changes the in-plane angle
-//!   of every chord and of the exit. TT's cone keeps the offset Bravais' Φ selects, and TRT
-//!   keeps Bravais' Φ (both measured worse when moved, docs/validation.md departure 9).
+//! - N_TT and N_TRT are centred on the exit azimuth through the tilted scales
+//!   ([`crate::tilted_deflection`]), not Bravais' Φ(p, h): a tilt changes the in-plane angle
+//!   of every chord and of the exit, and the exit's inclination, which sets the θ_d where
+//!   d'Eon et al. 2011's N_p reads η′ (departures 9 and 15). TT's cone is taken at the offset
+//!   whose exit leaves at φ through the tilted scales ([`tilted_tt_offset`]), not the one
+//!   Bravais' Φ selects (departure 14). TRRT keeps Bravais' Φ (measured worse when moved).
 //! - Each M still integrates to 1, so ∫ S dω is the budget of [`NonSeparable::energy_budget`]
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
@@ -81,6 +83,7 @@ use crate::nusselt;
 use crate::params::{FiberParams, ParamError};
 use crate::special::{asin_fast, cos_quadrant, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
+use crate::tilted_deflection::tilted_tt_offset;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
@@ -350,9 +353,17 @@ impl NonSeparable {
         LongitudinalLobe::new(shape_variance(theta_i, w), cone)
     }
 
-    /// The offset h whose TT path leaves at azimuth φ for light at θ_i ([`TtOffsets`]).
+    /// The offset h whose TT path leaves at azimuth φ for light at θ_i: through the tilted
+    /// scales where they tilt and the path at h = 0 leaves ([`tilted_tt_offset`]), else by
+    /// Bravais' Φ(1, h) ([`TtOffsets`]).
     fn tt_offset(&self, theta_i: f64, phi: f64) -> f64 {
         let eta = self.params.eta;
+        let alpha = self.params.alpha;
+        if self.scales == Scales::Tilted && alpha != 0.0 {
+            if let Some(h) = tilted_tt_offset(theta_i, alpha, eta, phi) {
+                return h;
+            }
+        }
         self.tt_offsets
             .get_or_init(|| TtOffsets::build(eta))
             .offset(phi, eta_prime(eta, -theta_i))
