@@ -93,13 +93,29 @@ pub fn deflection_shift(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64, read
     };
     let sin_theta_o = match read_at {
         ReadAt::OwnExit => exit.sin_theta,
-        ReadAt::CentralExit => match tilted_exit(p, theta_i, alpha, eta, 0.0) {
-            Some(central) => central.sin_theta,
-            None => exit.sin_theta,
-        },
+        ReadAt::CentralExit => central_exit_last(p, theta_i, alpha, eta)
+            .map_or(exit.sin_theta, |central| central.sin_theta),
     };
     let theta_d = 0.5 * (sin_theta_o.clamp(-1.0, 1.0).asin() - theta_i);
     exit.phi - azimuthal_deflection(p, h, eta_prime(eta, theta_d))
+}
+
+/// [`tilted_exit`] at h = 0, kept for the last arguments on each thread: a table's row, the
+/// quadrature and a sampler's fixed point ask for it at every offset of one θ_i.
+fn central_exit_last(p: u32, theta_i: f64, alpha: f64, eta: f64) -> Option<TiltedExit> {
+    type Last = Option<([f64; 4], Option<TiltedExit>)>;
+    thread_local! {
+        static LAST: Cell<Last> = const { Cell::new(None) };
+    }
+    let key = [p as f64, theta_i, alpha, eta];
+    LAST.with(|last| match last.get() {
+        Some((k, found)) if k == key => found,
+        _ => {
+            let found = tilted_exit(p, theta_i, alpha, eta, 0.0);
+            last.set(Some((key, found)));
+            found
+        }
+    })
 }
 
 /// Where a lobe's N_p is read for the path entering at h: the θ_d = (θ_o − θ_i) / 2 of its

@@ -31,8 +31,8 @@ pub struct LobeTable {
 }
 
 impl LobeTable {
-    /// Fills the table from `shape(p, θ_i, φ)`, the exact shapes (TT's even in φ), a row of
-    /// θ_i per task on every available core.
+    /// Fills the table from `shape(p, θ_i, φ)`, the exact shapes (TT's even in φ), rows of θ_i
+    /// shared among the available cores.
     pub fn build(shape: impl Fn(usize, f64, f64) -> Shape + Sync) -> Self {
         let mut tt = vec![[0.0; 2]; THETA_I_NODES * PHI_NODES];
         fill_rows(&mut tt, PHI_NODES, |i, row| {
@@ -41,9 +41,8 @@ impl LobeTable {
                 *cell = shape(1, theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
             }
         });
-        let trt = (0..THETA_I_NODES)
-            .map(|i| shape(2, theta_i_at(i), 0.0))
-            .collect();
+        let mut trt = vec![[0.0; 2]; THETA_I_NODES];
+        fill_rows(&mut trt, 1, |i, cell| cell[0] = shape(2, theta_i_at(i), 0.0));
         Self { tt, trt }
     }
 

@@ -44,6 +44,9 @@
 //! - TT's width is the spread of its exit through the tilted scales
 //!   ([`cones::first_order_tt_tilted`]), where §2.4's D_TT holds only for untilted ones (a
 //!   tilt moves both refractions' angles of incidence), kept bounded near the pole.
+//! - TRT's width is the spread of its exit through the tilted scales over the offsets that
+//!   leave, weighted by A(2, h), about the cone at h = 0 ([`cones::trt_lobe_tilted`]), where
+//!   §2.5's D_TRT is an untilted fiber's at h = 0 (departure 16).
 //! - TT's lobe is cut where a rough exit meets the surface at grazing incidence
 //!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than the first order.
 //! - N_TT and N_TRT are centred on the exit azimuth through the tilted scales
@@ -312,21 +315,36 @@ impl NonSeparable {
     /// TT's (p = 1) or TRT's lobe shape as the lobe table holds it ([`lobe_table`]): the
     /// Nusselt exit's sine before any clamp, at TT's offset for φ or TRT's h = 0, and √v cos θ_d.
     fn lobe_shape(&self, p: usize, theta_i: f64, phi: f64) -> lobe_table::Shape {
-        let FiberParams {
-            eta, beta, alpha, ..
-        } = self.params;
-        let theta_d = -theta_i;
-        let cos_d = theta_d.cos().abs();
+        let cos_d = theta_i.cos().abs();
         match p {
             1 => {
                 let h = self.tt_offset(theta_i, phi);
                 let CutLobe { sin_cone, variance } = self.tt_lobe(theta_i, h);
                 [sin_cone, variance.sqrt() * cos_d]
             }
-            _ => [
-                nusselt::exit_trt([alpha; 3], eta, incident(theta_i, 0.0)),
-                variance_trt(beta, eta, theta_d).sqrt() * cos_d,
-            ],
+            _ => {
+                let CutLobe { sin_cone, variance } = self.trt_lobe(theta_i);
+                [sin_cone, variance.sqrt() * cos_d]
+            }
+        }
+    }
+
+    /// TRT's lobe: the exit's sine at h = 0 before any clamp and the paper's variance
+    /// ([`variance_trt`]), or, through tilted scales, the spread of its exit over the offsets
+    /// ([`cones::trt_lobe_tilted`]).
+    fn trt_lobe(&self, theta_i: f64) -> CutLobe {
+        let FiberParams {
+            eta, beta, alpha, ..
+        } = self.params;
+        match self.scales {
+            Scales::Paper => CutLobe {
+                sin_cone: nusselt::exit_trt([alpha; 3], eta, incident(theta_i, 0.0)),
+                variance: variance_trt(beta, eta, -theta_i),
+            },
+            Scales::Tilted => cones::trt_lobe_tilted(theta_i, alpha, eta, beta, |h| {
+                let a = self.azimuthal().attenuation(theta_i, h).0[2];
+                (a.x + a.y + a.z) / 3.0
+            }),
         }
     }
 
@@ -406,7 +424,7 @@ impl NonSeparable {
                 } else {
                     cone_trt(theta_i, alpha, eta)
                 };
-                LongitudinalLobe::new(variance_trt(beta, eta, theta_d), cone)
+                LongitudinalLobe::new(self.trt_lobe(theta_i).variance, cone)
             }
             _ => self.deon.longitudinal(p, theta_i),
         }
@@ -618,7 +636,9 @@ mod tests {
     /// rotations near grazing exits) and 2.5e-3 rad (TRT), 7e-6 rad on average; widths within
     /// 2.3e-3 (the paper's TT) and 1e-6 (TRT). The tilted TT width (departure 12) has kinks
     /// where its exit nears the critical angle and the half-differences of its spread reach
-    /// the clamp: within 3.6e-2 there, 2.1e-4 on average.
+    /// the clamp: within 3.6e-2 there, 2.1e-4 on average. The tilted TRT width (departure 16)
+    /// averages over the offsets whose smooth path leaves, which start and stop leaving at
+    /// kinks in θ_i: within 1.5e-3 there, 1.7e-5 on average (it was 1e-6 at h = 0 alone).
     #[test]
     fn lobe_table_follows_the_exact_lobes() {
         for (scales, alpha_deg) in [
@@ -639,11 +659,16 @@ mod tests {
             let n = 300;
             for i in 0..n {
                 let theta_i = -1.55 + 3.1 * (i as f64 + 0.37) / n as f64;
+                // TRT's lobe depends on θ_i alone.
+                let trt = model.longitudinal_exact(2, theta_i, 0.0, &NO_MIRRORS);
                 for k in 0..n {
                     let phi = -PI + 2.0 * PI * (k as f64 + 0.61) / n as f64;
                     for (l, p) in [(0, 1), (1, 2)] {
                         let got = model.longitudinal(p, theta_i, phi);
-                        let want = model.longitudinal_exact(p, theta_i, phi, &NO_MIRRORS);
+                        let want = match p {
+                            2 => trt,
+                            _ => model.longitudinal_exact(p, theta_i, phi, &NO_MIRRORS),
+                        };
                         let e = (got.theta_cone - want.theta_cone).abs();
                         worst[l] = worst[l].max(e);
                         sum[l] += e;
@@ -669,8 +694,8 @@ mod tests {
             );
             assert!(worst[0] < 0.01 && worst[1] < 4e-3, "{worst:?}");
             assert!(mean[0] < 2e-5 && mean[1] < 2e-5, "{mean:?}");
-            assert!(width[0] < 0.05 && width[1] < 1e-5, "{width:?}");
-            assert!(width_mean[0] < 5e-4, "{width_mean:?}");
+            assert!(width[0] < 0.05 && width[1] < 5e-3, "{width:?}");
+            assert!(width_mean[0] < 5e-4 && width_mean[1] < 5e-5, "{width_mean:?}");
         }
     }
 
