@@ -322,7 +322,14 @@ impl AzimuthalScattering {
     pub fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
         match p {
             1 => deflection_shift(1, theta_i, self.scale_tilt, self.eta, h, ReadAt::OwnExit),
-            2 => deflection_shift(2, theta_i, self.scale_tilt, self.eta, h, ReadAt::CentralExit),
+            2 => deflection_shift(
+                2,
+                theta_i,
+                self.scale_tilt,
+                self.eta,
+                h,
+                ReadAt::CentralExit,
+            ),
             _ => 0.0,
         }
     }

@@ -411,8 +411,7 @@ fn splat_row(az: &AzimuthalScattering, nodes: &[RowNode], phi_nodes: usize, row:
             let eta_p = eta_perp_at(az.eta, d);
             acc.fill([0.0; 4]);
             for node in nodes {
-                let center =
-                    wrap_pi(azimuthal_deflection(p as u32, node.h, eta_p) + node.shift[l]);
+                let center = wrap_pi(azimuthal_deflection(p as u32, node.h, eta_p) + node.shift[l]);
                 let a = node.a[l];
                 splat.add(center, [a.x, a.y, a.z, node.sel[l]], &mut acc);
             }

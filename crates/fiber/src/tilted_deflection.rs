@@ -84,7 +84,14 @@ pub fn tilted_deflection(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> 
 /// shift is the traced Φ there; [`ReadAt`] says where that is. Where the path is blocked, the
 /// light a rough surface lets through leaves by micro-normals far from the tilted scale's,
 /// which this geometry does not describe, so it keeps Bravais' Φ.
-pub fn deflection_shift(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64, read_at: ReadAt) -> f64 {
+pub fn deflection_shift(
+    p: u32,
+    theta_i: f64,
+    alpha: f64,
+    eta: f64,
+    h: f64,
+    read_at: ReadAt,
+) -> f64 {
     if alpha == 0.0 {
         return 0.0;
     }
@@ -124,7 +131,10 @@ fn central_exit_last(p: u32, theta_i: f64, alpha: f64, eta: f64) -> Option<Tilte
 pub enum ReadAt {
     /// The cone follows each path's own exit (TT's, at the offset that leaves at φ).
     OwnExit,
-    /// The cone is the path at h = 0's (TRT's, d'Eon et al. 2014 §2.5).
+    /// The cone is the path at h = 0's (TRT's, d'Eon et al. 2014 §2.5). The smooth path's:
+    /// near grazing incidence the tilted model moves TRT's cone by what its rough exit cuts
+    /// (up to 0.02 in sine at θ_i = 1.3; docs/validation.md, departure 17), which this
+    /// leaves out.
     CentralExit,
 }
 
@@ -135,7 +145,10 @@ pub enum ReadAt {
 /// (docs/validation.md, departure 14), where the exit it describes leaves.
 pub fn tilted_tt_offset(theta_i: f64, alpha: f64, eta: f64, phi: f64) -> Option<f64> {
     let deflection = |h: f64| tilted_deflection(1, theta_i, alpha, eta, h);
-    let Reach { edge, deflection_at_edge } = reach_last(theta_i, alpha, eta)?;
+    let Reach {
+        edge,
+        deflection_at_edge,
+    } = reach_last(theta_i, alpha, eta)?;
     let target = wrap_pi(phi);
     let a = target.abs();
     let h = if a <= deflection_at_edge {

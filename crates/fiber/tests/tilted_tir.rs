@@ -426,7 +426,10 @@ fn tt_cone_sits_where_the_exact_traces_exit_leaves() {
              at Bravais' offset {bravais_worst:.2e}"
         );
         assert!(compared > 100, "{compared} exits");
-        assert!(worst < 5e-5, "θ_i {theta_i} α {alpha_deg}°: cone off by {worst}");
+        assert!(
+            worst < 5e-5,
+            "θ_i {theta_i} α {alpha_deg}°: cone off by {worst}"
+        );
         assert!(bravais_worst > 5e-3, "the test tells the two offsets apart");
     }
 }
@@ -443,8 +446,8 @@ fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
     use cuticle_fiber::azimuthal::{AzimuthalScattering, Weighting};
     use cuticle_fiber::frame::wrap_pi;
     use cuticle_fiber::nonseparable::NonSeparable;
-    use cuticle_fiber::special::erfc;
     use cuticle_fiber::params::FiberParams;
+    use cuticle_fiber::special::erfc;
     use std::f64::consts::PI;
     const BINS: usize = 128;
     const SUBSAMPLES: usize = 16;
@@ -489,7 +492,12 @@ fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
                 let exit = trace(theta_i, alpha, h);
                 let exit = if p == 1 { exit.0 } else { exit.1 };
                 if let Exit::Leaves(o) = exit {
-                    spread(&mut exact, o.z.atan2(o.y), az.v_n[p].sqrt(), a / OFFSETS as f64);
+                    spread(
+                        &mut exact,
+                        o.z.atan2(o.y),
+                        az.v_n[p].sqrt(),
+                        a / OFFSETS as f64,
+                    );
                 }
             }
             let (mut difference, mut total) = (0.0, 0.0);
@@ -508,9 +516,14 @@ fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
                 total += exact;
             }
             let l1 = difference / total;
-            println!("θ_i {theta_i} α {alpha_deg:+}° {name}: relative L1 {l1:.4} (energy {total:.4})");
+            println!(
+                "θ_i {theta_i} α {alpha_deg:+}° {name}: relative L1 {l1:.4} (energy {total:.4})"
+            );
             assert!(total > 0.02, "{name} leaves");
-            assert!(l1 < 0.02, "θ_i {theta_i} α {alpha_deg}° {name}: relative L1 {l1}");
+            assert!(
+                l1 < 0.02,
+                "θ_i {theta_i} α {alpha_deg}° {name}: relative L1 {l1}"
+            );
         }
     }
 }
@@ -534,7 +547,8 @@ fn trt_width_through_tilted_scales_is_the_exact_traces_spread() {
         let model = trt_lobe_over_offsets(theta_i, alpha, ETA, beta, a2);
         let (s, c2) = (model.sin_cone, 1.0 - model.sin_cone * model.sin_cone);
         let model_spread = model.variance * c2 + (model.variance * s).powi(2);
-        let sine = |h: f64, slopes: &[[f64; 2]]| exit_sloped(theta_i, alpha, h, slopes).map(|o| o.x);
+        let sine =
+            |h: f64, slopes: &[[f64; 2]]| exit_sloped(theta_i, alpha, h, slopes).map(|o| o.x);
         let centre = sine(0.0, &[[0.0; 2]; 3]).expect("the central path leaves");
         let (mut weight, mut moment) = (0.0, 0.0);
         for k in 0..HALF_OFFSETS {
@@ -599,7 +613,11 @@ fn trt_cut_is_the_spread_of_the_paths_that_leave() {
     let sigma = beta / 2f64.sqrt();
     // (θ_i, α, whether the exit's total reflection narrows the lobe by a tenth or more, and
     // whether it moves its mean by more than 0.01 in sine)
-    let cases = [(0.25f64, 0.0, false, false), (1.1, 0.0, true, false), (1.3, -2.0, false, true)];
+    let cases = [
+        (0.25f64, 0.0, false, false),
+        (1.1, 0.0, true, false),
+        (1.3, -2.0, false, true),
+    ];
     for (theta_i, alpha_deg, trimmed, moved) in cases {
         let alpha = f64::to_radians(alpha_deg);
         let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
@@ -661,9 +679,25 @@ fn trt_cut_is_the_spread_of_the_paths_that_leave() {
             first.sin_cone,
             model_spread(first)
         );
-        assert!((cut.sin_cone - mean).abs() < 2e-3, "{} vs {mean}", cut.sin_cone);
-        assert!((model_spread(cut) / spread - 1.0).abs() < 0.03, "{} vs {spread}", model_spread(cut));
-        assert_eq!(spread < 0.9 * model_spread(first), trimmed, "{spread} vs first order");
-        assert_eq!((mean - first.sin_cone).abs() > 0.01, moved, "{mean} vs first order");
+        assert!(
+            (cut.sin_cone - mean).abs() < 2e-3,
+            "{} vs {mean}",
+            cut.sin_cone
+        );
+        assert!(
+            (model_spread(cut) / spread - 1.0).abs() < 0.03,
+            "{} vs {spread}",
+            model_spread(cut)
+        );
+        assert_eq!(
+            spread < 0.9 * model_spread(first),
+            trimmed,
+            "{spread} vs first order"
+        );
+        assert_eq!(
+            (mean - first.sin_cone).abs() > 0.01,
+            moved,
+            "{mean} vs first order"
+        );
     }
 }

@@ -42,7 +42,9 @@ impl LobeTable {
             }
         });
         let mut trt = vec![[0.0; 2]; THETA_I_NODES];
-        fill_rows(&mut trt, 1, |i, cell| cell[0] = shape(2, theta_i_at(i), 0.0));
+        fill_rows(&mut trt, 1, |i, cell| {
+            cell[0] = shape(2, theta_i_at(i), 0.0)
+        });
         Self { tt, trt }
     }
 

@@ -88,8 +88,8 @@ use crate::nusselt;
 use crate::params::{FiberParams, ParamError};
 use crate::special::{asin_fast, cos_quadrant, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
-use crate::tilted_deflection::tilted_tt_offset;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
+use crate::tilted_deflection::tilted_tt_offset;
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
     CutLobe, cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, first_order_tt, trt_exit,
@@ -379,10 +379,11 @@ impl NonSeparable {
     fn tt_offset(&self, theta_i: f64, phi: f64) -> f64 {
         let eta = self.params.eta;
         let alpha = self.params.alpha;
-        if self.scales == Scales::Tilted && alpha != 0.0 {
-            if let Some(h) = tilted_tt_offset(theta_i, alpha, eta, phi) {
-                return h;
-            }
+        if self.scales == Scales::Tilted
+            && alpha != 0.0
+            && let Some(h) = tilted_tt_offset(theta_i, alpha, eta, phi)
+        {
+            return h;
         }
         self.tt_offsets
             .get_or_init(|| TtOffsets::build(eta))
@@ -701,7 +702,10 @@ mod tests {
             assert!(worst[0] < 0.01 && worst[1] < 4e-3, "{worst:?}");
             assert!(mean[0] < 2e-5 && mean[1] < 5e-5, "{mean:?}");
             assert!(width[0] < 0.05 && width[1] < 0.05, "{width:?}");
-            assert!(width_mean[0] < 5e-4 && width_mean[1] < 5e-4, "{width_mean:?}");
+            assert!(
+                width_mean[0] < 5e-4 && width_mean[1] < 5e-4,
+                "{width_mean:?}"
+            );
         }
     }
 
