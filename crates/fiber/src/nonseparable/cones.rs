@@ -60,12 +60,6 @@ pub fn cone_tt_tilted(theta_i: f64, alpha: f64, eta: f64, h: f64) -> f64 {
     x.clamp(-1.0, 1.0).asin()
 }
 
-/// θ_cone of TRT for the tilted model, at h = 0 as in eq. 8, continued like [`cone_tt_tilted`].
-pub fn cone_trt_tilted(theta_i: f64, alpha: f64, eta: f64) -> f64 {
-    let x = nusselt::exit_trt([alpha; 3], eta, incident(theta_i, 0.0));
-    x.clamp(-1.0, 1.0).asin()
-}
-
 /// The TT exit direction at offset h through the full rotation sequence, or why it has none:
 /// [`Blocked::TotalInternalReflection`] where η²(x_m² + y²) ≥ 1 in the second scale's frame,
 /// tested before the final rotation, at every h (d'Eon et al. 2014 §2.4: "x_TT may not be real").
@@ -119,37 +113,42 @@ pub fn first_order_tt(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> 
 /// narrower for α < 0, wider for α > 0, as the simulation's TT is (issue 14, departure 12 of
 /// docs/validation.md).
 pub fn first_order_tt_tilted(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
-    let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, h);
-    let half_difference = |k: usize| {
-        let (mut up, mut down) = ([alpha; 2], [alpha; 2]);
-        up[k] += sigma;
-        down[k] -= sigma;
-        0.5 * (nusselt::exit_tt(up, eta, incident) - nusselt::exit_tt(down, eta, incident))
-    };
-    let x = nusselt::exit_tt([alpha; 2], eta, incident);
-    let sine_variance = half_difference(0).powi(2) + half_difference(1).powi(2);
+    let (x, sine_variance) = sine_spread(alpha, beta, |tilts: [f64; 2]| {
+        nusselt::exit_tt(tilts, eta, incident)
+    });
     CutLobe {
         sin_cone: x,
         variance: variance_from_sine_spread(x, sine_variance),
     }
 }
 
-/// TRT's exit sine x at offset h through scales tilted by α, and the spread of x to first
-/// order in the slopes at its entry, internal-reflection and exit scales: each tilt moved by
-/// ± σ = β/√2 (a two-point Gauss–Hermite rule per scale), as [`first_order_tt_tilted`] takes
-/// TT's.
-fn trt_sine_spread(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> (f64, f64) {
+/// The exit sine x of a path through N scales tilted by α, and its spread to first order in
+/// the slopes along the axis: Var x = Σ_k ((x(α_k + σ) − x(α_k − σ))/2)², σ = β/√2, a
+/// two-point Gauss–Hermite rule per scale (see [`first_order_tt_tilted`]).
+fn sine_spread<const N: usize>(
+    alpha: f64,
+    beta: f64,
+    exit: impl Fn([f64; N]) -> f64,
+) -> (f64, f64) {
     let sigma = beta * FRAC_1_SQRT_2;
-    let incident = incident(theta_i, h);
     let half_difference = |k: usize| {
-        let (mut up, mut down) = ([alpha; 3], [alpha; 3]);
+        let (mut up, mut down) = ([alpha; N], [alpha; N]);
         up[k] += sigma;
         down[k] -= sigma;
-        0.5 * (nusselt::exit_trt(up, eta, incident) - nusselt::exit_trt(down, eta, incident))
+        0.5 * (exit(up) - exit(down))
     };
-    let x = nusselt::exit_trt([alpha; 3], eta, incident);
-    (x, (0..3).map(|k| half_difference(k).powi(2)).sum())
+    let x = exit([alpha; N]);
+    (x, (0..N).map(|k| half_difference(k).powi(2)).sum())
+}
+
+/// TRT's exit sine x at offset h through scales tilted by α, and the spread of x to first
+/// order in the slopes at its entry, internal-reflection and exit scales ([`sine_spread`]).
+fn trt_sine_spread(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> (f64, f64) {
+    let incident = incident(theta_i, h);
+    sine_spread(alpha, beta, |tilts: [f64; 3]| {
+        nusselt::exit_trt(tilts, eta, incident)
+    })
 }
 
 /// TRT's first-order lobe through tilted scales at h = 0 ([`trt_sine_spread`]), the spread
@@ -184,6 +183,18 @@ pub fn trt_lobe_over_offsets(
     attenuation: impl Fn(f64) -> f64,
 ) -> CutLobe {
     let central = first_order_trt_tilted(theta_i, alpha, eta, beta);
+    over_offsets(central, theta_i, alpha, eta, beta, attenuation)
+}
+
+/// [`trt_lobe_over_offsets`] about the `central` lobe its caller has found.
+fn over_offsets(
+    central: CutLobe,
+    theta_i: f64,
+    alpha: f64,
+    eta: f64,
+    beta: f64,
+    attenuation: impl Fn(f64) -> f64,
+) -> CutLobe {
     let (mut leaving, mut all, mut second_moment) = (0.0, 0.0, 0.0);
     for k in 0..TRT_OFFSETS {
         // A(2, h) and x(h) are even in h: the half fiber h ≥ 0 stands for both.
@@ -220,11 +231,11 @@ pub fn trt_lobe_tilted(
     beta: f64,
     attenuation: impl Fn(f64) -> f64,
 ) -> CutLobe {
-    let averaged = trt_lobe_over_offsets(theta_i, alpha, eta, beta, attenuation);
+    let central = first_order_trt_tilted(theta_i, alpha, eta, beta);
+    let averaged = over_offsets(central, theta_i, alpha, eta, beta, attenuation);
     let Some(cut) = trt_axial_cut(theta_i, alpha, eta, beta) else {
         return averaged;
     };
-    let central = first_order_trt_tilted(theta_i, alpha, eta, beta);
     CutLobe {
         sin_cone: averaged.sin_cone + (cut.sin_cone - central.sin_cone),
         variance: averaged.variance * (cut.variance / central.variance).min(1.0),
@@ -309,15 +320,11 @@ fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLo
 pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
     let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, 0.0);
-    let (mut m0, mut m1, mut m2, mut arriving) = (0.0, 0.0, 0.0, 0.0);
+    let (mut moments, mut arriving) = (SineMoments::default(), 0.0);
     for &d1 in unit_tilts() {
-        let Ok(entry) = AtScale::outside(alpha + sigma * d1, incident) else {
+        let Some((inward, t1)) = enter(alpha + sigma * d1, eta, incident) else {
             continue;
         };
-        let Ok(inward) = entry.refract(eta) else {
-            continue;
-        };
-        let t1 = entry.cos * (1.0 - fresnel_dielectric(entry.cos, eta));
         for &d2 in unit_tilts() {
             let Ok(at) = AtScale::inside(alpha + sigma * d2, nusselt::propagate(inward)) else {
                 continue;
@@ -326,23 +333,16 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
             let Ok((x, _)) = at.refract(eta) else {
                 continue;
             };
-            let w = t1 * at.cos * (1.0 - fresnel_dielectric(at.cos, 1.0 / eta));
-            m0 += w;
-            m1 += w * x;
-            m2 += w * x * x;
+            moments.add(
+                t1 * at.cos * (1.0 - fresnel_dielectric(at.cos, 1.0 / eta)),
+                x,
+            );
         }
     }
-    if m0 <= 0.0 {
-        return None;
-    }
-    let mean = m1 / m0;
-    let cut = CutLobe {
-        sin_cone: mean,
-        variance: variance_from_sine_spread(mean, (m2 / m0 - mean * mean).max(0.0)),
-    };
+    let cut = moments.lobe()?;
     // Where the exit lets out under FADE of what arrives there, the few paths left decide
     // the moments, and the last to go would leave a jump to `None`: fade to first order.
-    let fade = (m0 / (arriving * FADE)).min(1.0);
+    let fade = (moments.weight / (arriving * FADE)).min(1.0);
     let first = first_order_tt_tilted(theta_i, alpha, eta, beta, 0.0);
     Some(CutLobe {
         sin_cone: first.sin_cone + fade * (cut.sin_cone - first.sin_cone),
@@ -366,15 +366,11 @@ pub fn trt_axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<Cu
     let tilts = TILTS.get_or_init(unit_normal_midpoints::<TRT_TILTS>);
     let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, 0.0);
-    let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
+    let mut moments = SineMoments::default();
     for &d1 in tilts {
-        let Ok(entry) = AtScale::outside(alpha + sigma * d1, incident) else {
+        let Some((inward, t1)) = enter(alpha + sigma * d1, eta, incident) else {
             continue;
         };
-        let Ok(inward) = entry.refract(eta) else {
-            continue;
-        };
-        let t1 = entry.cos * (1.0 - fresnel_dielectric(entry.cos, eta));
         for &d2 in tilts {
             let Ok(at) = AtScale::inside(alpha + sigma * d2, nusselt::propagate(inward)) else {
                 continue;
@@ -391,21 +387,56 @@ pub fn trt_axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<Cu
                 let Ok((x, _)) = out.refract(eta) else {
                     continue;
                 };
-                let w = r2 * out.cos * (1.0 - fresnel_dielectric(out.cos, 1.0 / eta));
-                m0 += w;
-                m1 += w * x;
-                m2 += w * x * x;
+                moments.add(
+                    r2 * out.cos * (1.0 - fresnel_dielectric(out.cos, 1.0 / eta)),
+                    x,
+                );
             }
         }
     }
-    if m0 <= 0.0 {
-        return None;
+    moments.lobe()
+}
+
+/// A path's refraction into the fiber through a scale tilted by `tilt`: the inward direction
+/// and its weight, the projected micro-normal times Fresnel's transmission; `None` where the
+/// scale is blocked.
+fn enter(tilt: f64, eta: f64, incident: Nusselt) -> Option<(Nusselt, f64)> {
+    let entry = AtScale::outside(tilt, incident).ok()?;
+    let inward = entry.refract(eta).ok()?;
+    Some((
+        inward,
+        entry.cos * (1.0 - fresnel_dielectric(entry.cos, eta)),
+    ))
+}
+
+/// The weighted moments of the exit sines of the paths a cut keeps.
+#[derive(Clone, Copy, Debug, Default)]
+struct SineMoments {
+    weight: f64,
+    sum: f64,
+    sum_of_squares: f64,
+}
+
+impl SineMoments {
+    fn add(&mut self, weight: f64, x: f64) {
+        self.weight += weight;
+        self.sum += weight * x;
+        self.sum_of_squares += weight * x * x;
     }
-    let mean = m1 / m0;
-    Some(CutLobe {
-        sin_cone: mean,
-        variance: variance_from_sine_spread(mean, (m2 / m0 - mean * mean).max(0.0)),
-    })
+
+    /// The lobe at their mean, its variance from their spread ([`variance_from_sine_spread`]);
+    /// `None` where no path left.
+    fn lobe(&self) -> Option<CutLobe> {
+        if self.weight <= 0.0 {
+            return None;
+        }
+        let mean = self.sum / self.weight;
+        let spread = (self.sum_of_squares / self.weight - mean * mean).max(0.0);
+        Some(CutLobe {
+            sin_cone: mean,
+            variance: variance_from_sine_spread(mean, spread),
+        })
+    }
 }
 
 /// The share of the power arriving at TT's exit that must leave for [`axial_cut`]'s moments

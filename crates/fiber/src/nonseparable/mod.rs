@@ -92,8 +92,8 @@ use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
 use crate::tilted_deflection::tilted_tt_offset;
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
-    CutLobe, cone_r, cone_trt, cone_trt_tilted, cone_tt, cone_tt_tilted, first_order_tt, trt_exit,
-    tt_exit, tt_lobe_rough, tt_offset, variance_r, variance_trt, variance_tt,
+    CutLobe, cone_r, cone_trt, cone_tt, cone_tt_tilted, first_order_tt, trt_exit, tt_exit,
+    tt_lobe_rough, tt_offset, variance_r, variance_trt, variance_tt,
 };
 use glam::DVec3;
 use lobe_table::LobeTable;
