@@ -62,8 +62,8 @@
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
 //! TRT's cones and widths from `lobe_table.rs` and, in the tilted model, the lobe-selection
-//! probabilities from `selection.rs`; the model without tables is the reference they are
-//! measured against.
+//! probabilities from `selection.rs` and R's mirror cone and spread from `mirror_table.rs`;
+//! the model without tables is the reference they are measured against.
 //!
 //! Erratum (both forms): d'Eon et al. 2014 §2.4 prints D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The
 //! first-order derivatives it gives in §2.2, dx_TT/dα₁,₂ = ηz′ − z, lead instead to
@@ -73,6 +73,7 @@
 
 pub mod cones;
 mod lobe_table;
+mod mirror_table;
 pub mod rough_mirror;
 mod selection;
 mod tt_offsets;
@@ -97,6 +98,7 @@ pub use cones::{
 };
 use glam::DVec3;
 use lobe_table::LobeTable;
+use mirror_table::{MirrorCone, MirrorTable, TabulatedMirror};
 use rough_mirror::RoughMirror;
 use selection::SelectionTable;
 use std::sync::{Arc, OnceLock};
@@ -142,6 +144,8 @@ pub struct NonSeparable {
     selection: Option<Arc<SelectionTable>>,
     /// TT's and TRT's longitudinal lobes of the fast path.
     lobes: Option<Arc<LobeTable>>,
+    /// R's mirror cone and spread of the tilted model's fast path.
+    mirror_cones: Option<Arc<MirrorTable>>,
     /// N_R off the rough surface, built on first use (tilted model, β ≥
     /// [`rough_mirror::LEAST_BETA`]).
     rough_mirror: OnceLock<Arc<RoughMirror>>,
@@ -176,6 +180,7 @@ impl NonSeparable {
             tt_offsets: OnceLock::new(),
             selection: None,
             lobes: None,
+            mirror_cones: None,
             rough_mirror: OnceLock::new(),
         })
     }
@@ -183,12 +188,17 @@ impl NonSeparable {
     /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]), TT's
     /// and TRT's lobes (`lobe_table.rs`) and, where A(p, h) is a trace through tilted or rough
     /// scales (the tilted model, at any α), its lobe selection (`selection.rs`): without it a
-    /// sample traces A(p, h) at its offset, and R's rough mirror at every node.
+    /// sample traces A(p, h) at its offset, and R's rough mirror at every node. The tilted
+    /// model also tabulates R's mirror (`mirror_table.rs`), which it otherwise solves by
+    /// Newton's method at every evaluation.
     pub fn tabulated(mut self) -> Self {
         // R's spread weighs offsets by the selection this builds.
         self.rough_mirror = OnceLock::new();
         let lobes = LobeTable::build(|p, theta_i, phi| self.lobe_shape(p, theta_i, phi));
         self.lobes = Some(Arc::new(lobes));
+        if self.scales == Scales::Tilted {
+            self.mirror_cones = Some(Arc::new(MirrorTable::build(self.params.alpha)));
+        }
         if self.azimuthal().surface().is_flat_and_smooth() {
             self.deon = self.deon.tabulated();
             return self;
@@ -260,10 +270,46 @@ impl NonSeparable {
     /// at β = 0.3, θ_i = 1.0; 0.87 at β = 0.04, θ_i = 1.4, measured with `furnace::albedo`).
     pub fn longitudinal(&self, p: usize, theta_i: f64, phi: f64) -> LongitudinalLobe {
         let mirrors = match p {
-            0 => self.mirrors(theta_i, phi),
+            0 if self.mirror_cones.is_none() => self.mirrors(theta_i, phi),
             _ => NO_MIRRORS,
         };
         self.longitudinal_at(p, theta_i, phi, &mirrors)
+    }
+
+    /// Whether an evaluation solves R's offsets: for N_R where the rough mirror does not give
+    /// it, for R's cone where the mirror table does not.
+    fn needs_mirrors(&self) -> bool {
+        self.scales == Scales::Tilted
+            && (self.mirror_cones.is_none() || self.rough_mirror().is_none())
+    }
+
+    /// R's mirror at (θ_i, φ): the mirror table's where it answers, else the first of the
+    /// solved `mirrors` (which the caller solved where there is no table); `None` where no
+    /// offset mirrors to φ, and in the paper's form.
+    fn r_cone(
+        &self,
+        theta_i: f64,
+        phi: f64,
+        mirrors: &[Option<MirrorOffset>; 3],
+    ) -> Option<MirrorCone> {
+        let first = |m: &[Option<MirrorOffset>; 3]| m.iter().flatten().next().map(MirrorCone::from);
+        let Some(table) = &self.mirror_cones else {
+            return first(mirrors);
+        };
+        match table.at(theta_i, phi) {
+            TabulatedMirror::Mirror(cone) => Some(cone),
+            TabulatedMirror::Beyond => None,
+            TabulatedMirror::Unknown => first(&self.mirrors(theta_i, phi)),
+        }
+    }
+
+    /// R's lobe where no tilted mirror places it: d'Eon et al. 2014 §2.3's cone and eq. 6's
+    /// variance.
+    fn r_lobe_paper(&self, theta_i: f64, phi: f64) -> LongitudinalLobe {
+        LongitudinalLobe::new(
+            variance_r(self.params.beta, phi),
+            cone_r(theta_i, self.params.alpha, phi),
+        )
     }
 
     /// R's offsets at (θ_i, φ) in the tilted model ([`tilted_mirror_offsets`]): N_R and R's
@@ -306,9 +352,9 @@ impl NonSeparable {
         match (&self.lobes, p) {
             (Some(table), 1) if tilted => exit(table.tt(theta_i, phi)),
             (Some(table), 2) if tilted => exit(table.trt(theta_i)),
-            (_, 0) => match mirrors.iter().flatten().next() {
-                Some(m) => ConeLobe::from_sin(mirror_variance(self.params.beta, m), m.sin_theta),
-                None => self.longitudinal_at(p, theta_i, phi, mirrors).into(),
+            (_, 0) => match self.r_cone(theta_i, phi, mirrors) {
+                Some(m) => ConeLobe::from_sin(mirror_variance(self.params.beta, &m), m.sin_theta),
+                None => self.r_lobe_paper(theta_i, phi).into(),
             },
             _ => self.longitudinal_at(p, theta_i, phi, mirrors).into(),
         }
@@ -406,10 +452,11 @@ impl NonSeparable {
         let tilted = self.scales == Scales::Tilted;
         match p {
             // The exact mirror at the offset that reflects to φ (the first of φ, φ − 2π,
-            // φ + 2π that one reaches), its variance at fixed φ through the tilted scale.
-            0 => match mirrors.iter().flatten().next() {
-                Some(m) => LongitudinalLobe::new(mirror_variance(beta, m), m.theta),
-                None => LongitudinalLobe::new(variance_r(beta, phi), cone_r(theta_i, alpha, phi)),
+            // φ + 2π that one reaches; the mirror table's in the fast path), its variance at
+            // fixed φ through the tilted scale.
+            0 => match self.r_cone(theta_i, phi, mirrors) {
+                Some(m) => LongitudinalLobe::new(mirror_variance(beta, &m), asin_fast(m.sin_theta)),
+                None => self.r_lobe_paper(theta_i, phi),
             },
             1 => {
                 let h = self.tt_offset(theta_i, phi);
@@ -475,7 +522,10 @@ impl NonSeparable {
     fn pair(&self, wi: FiberAngles, wo: FiberAngles) -> Pair {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
-        let mirrors = self.mirrors(wi.theta, phi);
+        let mirrors = match self.needs_mirrors() {
+            true => self.mirrors(wi.theta, phi),
+            false => NO_MIRRORS,
+        };
         let (sin_o, cos_o) = sin_cos_quadrant(wo.theta);
         // Written out: `array::from_fn`'s closure can stay a call per lobe.
         let lobe = |p| self.cone_lobe(p, wi.theta, phi, &mirrors);
@@ -549,7 +599,7 @@ fn shape_variance(theta_i: f64, w: f64) -> f64 {
 /// fixed φ through the tilted scale ([`MirrorOffset::spread`]), which untilted is eq. 6's
 /// v_R = 2β²(1 − h²).
 #[inline]
-fn mirror_variance(beta: f64, m: &MirrorOffset) -> f64 {
+fn mirror_variance(beta: f64, m: &MirrorCone) -> f64 {
     0.5 * beta * beta * m.spread * m.spread
 }
 
