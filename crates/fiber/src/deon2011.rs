@@ -421,11 +421,16 @@ fn sample_phi_at(az: &AzimuthalScattering, p: usize, h: f64, eta_p: f64, u: f64)
     match p {
         0 => azimuthal_deflection(0, h, az.eta),
         4 => 2.0 * PI * u - PI,
-        _ => {
-            let offset = az.v_n[p].sqrt() * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16));
-            azimuthal_deflection(p as u32, h, eta_p) + offset
-        }
+        _ => azimuthal_deflection(p as u32, h, eta_p) + azimuthal_offset(az, p, u),
     }
+}
+
+/// The wrapped-Gaussian offset of a sampled φ for lobes 1 to 3, √v_N Φ⁻¹(u): what
+/// [`sample_phi`] adds to Φ(p, h), for a fixed-point sampler that draws φ at one u repeatedly
+/// and finds it once.
+#[inline]
+pub(crate) fn azimuthal_offset(az: &AzimuthalScattering, p: usize, u: f64) -> f64 {
+    az.v_n[p].sqrt() * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16))
 }
 
 /// A sample of S (all lobes, RGB) drawn with density `pdf`: weight S / pdf; `None` where the

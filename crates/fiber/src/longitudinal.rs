@@ -96,6 +96,18 @@ impl ConeLobe {
     }
 }
 
+impl ConeLobe {
+    /// sin θ_o drawn with density M(θ_o) cos θ_o from two uniform numbers, as
+    /// [`LongitudinalLobe::sample`] draws θ_o (d'Eon 2013), from the cone's sine and cosine
+    /// where the caller has them: no sine of the cone's angle, and no arcsine where the caller
+    /// wants the sine.
+    #[inline]
+    pub fn sample_sin(&self, u1: f64, u2: f64) -> f64 {
+        let v = self.v.max(MIN_VARIANCE);
+        sample_sin_o(v, exp_fast(-2.0 / v), self.sin_cone, self.cos_cone, u1, u2)
+    }
+}
+
 impl From<LongitudinalLobe> for ConeLobe {
     #[inline]
     fn from(lobe: LongitudinalLobe) -> Self {

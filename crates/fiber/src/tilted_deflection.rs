@@ -19,7 +19,7 @@
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::wrap_pi;
 use crate::nusselt::{self, AtScale, Nusselt, Tilt};
-use crate::special::atan2_fast;
+use crate::special::{asin_fast, atan2_fast};
 use crate::tilted_attenuation::incident;
 use std::cell::Cell;
 use std::f64::consts::PI;
@@ -103,7 +103,7 @@ pub fn deflection_shift(
         ReadAt::CentralExit => central_exit_last(p, theta_i, alpha, eta)
             .map_or(exit.sin_theta, |central| central.sin_theta),
     };
-    let theta_d = 0.5 * (sin_theta_o.clamp(-1.0, 1.0).asin() - theta_i);
+    let theta_d = 0.5 * (asin_fast(sin_theta_o.clamp(-1.0, 1.0)) - theta_i);
     exit.phi - azimuthal_deflection(p, h, eta_prime(eta, theta_d))
 }
 

@@ -80,7 +80,7 @@ mod tt_offsets;
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
 use crate::bravais::{azimuthal_deflection, eta_prime};
-use crate::deon2011::{DEon2011, sample_phi, weighted_sample};
+use crate::deon2011::{DEon2011, azimuthal_offset, sample_phi, weighted_sample};
 use crate::frame::{FiberAngles, wrap_pi};
 use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::{ConeLobe, LongitudinalLobe};
@@ -274,6 +274,17 @@ impl NonSeparable {
             _ => NO_MIRRORS,
         };
         self.longitudinal_at(p, theta_i, phi, &mirrors)
+    }
+
+    /// The lobe of mode p ≤ 2 as sampling draws from it: [`Self::cone_lobe`], the lobe the
+    /// evaluation reads, with R's offsets solved where the mirror table does not give its cone.
+    #[inline]
+    fn sampling_lobe(&self, p: usize, theta_i: f64, phi: f64) -> ConeLobe {
+        let mirrors = match p {
+            0 if self.mirror_cones.is_none() => self.mirrors(theta_i, phi),
+            _ => NO_MIRRORS,
+        };
+        self.cone_lobe(p, theta_i, phi, &mirrors)
     }
 
     /// Whether an evaluation solves R's offsets: for N_R where the rough mirror does not give
@@ -570,13 +581,17 @@ impl NonSeparable {
     ) -> (f64, f64, u32) {
         let mut theta_o = -wi.theta;
         let mut phi = 0.0;
-        let shift = self.azimuthal().deflection_shift(p, wi.theta, h);
+        let az = self.azimuthal();
+        // φ = Φ(p, h; η′(θ_d)) + the tilt's shift + the Gaussian offset, as `sample_phi` draws
+        // it: only Φ changes from one iteration to the next.
+        let fixed = az.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, u_phi);
         for iteration in 1..=self.iterations {
             let theta_d = 0.5 * (theta_o - wi.theta);
-            phi = sample_phi(self.azimuthal(), p, h, shift, theta_d, u_phi);
-            let next = self
-                .longitudinal(p, wi.theta, wrap_pi(phi))
-                .sample(u_m[0], u_m[1]);
+            phi = azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + fixed;
+            let next = asin_fast(
+                self.sampling_lobe(p, wi.theta, wrap_pi(phi))
+                    .sample_sin(u_m[0], u_m[1]),
+            );
             let step = (next - theta_o).abs();
             theta_o = next;
             if step < CONVERGED {
@@ -639,8 +654,10 @@ impl FiberModel for NonSeparable {
                     Scales::Paper => azimuthal_deflection(0, h, self.params.eta),
                 };
                 (
-                    self.longitudinal(0, wi.theta, wrap_pi(phi))
-                        .sample(u[2], u[3]),
+                    asin_fast(
+                        self.sampling_lobe(0, wi.theta, wrap_pi(phi))
+                            .sample_sin(u[2], u[3]),
+                    ),
                     phi,
                     1,
                 )

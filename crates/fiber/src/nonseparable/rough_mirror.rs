@@ -50,6 +50,17 @@ const SLOPES: usize = 16;
 /// Standard deviations of a spread within which [`RoughMirror::build`] adds its Gaussian.
 const REACH: f64 = 7.0;
 
+/// t taken modulo 1: t itself for the wrapped azimuths the model passes (t ∈ [0, 1)), without
+/// the library's `fmod` there.
+#[inline]
+fn unit_period(t: f64) -> f64 {
+    if (0.0..1.0).contains(&t) {
+        t
+    } else {
+        t.rem_euclid(1.0)
+    }
+}
+
 /// Roughness below which the spread is narrower than two φ nodes (s ≈ √2 β at normal
 /// incidence): N_R stays the smooth mirror's there.
 pub const LEAST_BETA: f64 = 0.01;
@@ -251,7 +262,7 @@ impl RoughMirror {
     #[inline]
     pub fn density(&self, theta_i: f64, phi: f64, weighting: Weighting) -> f64 {
         let (i0, fi) = locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES);
-        let x = ((phi + PI) / (2.0 * PI)).rem_euclid(1.0) * PHI_NODES as f64;
+        let x = unit_period((phi + PI) / (2.0 * PI)) * PHI_NODES as f64;
         let j0 = (x as usize).min(PHI_NODES - 1);
         let fj = (x - j0 as f64) as f32;
         let j1 = (j0 + 1) % PHI_NODES;
