@@ -215,15 +215,23 @@ mod tests {
     }
 
     /// Between the nodes, over a grid of (θ_i, φ) that shares none of them, the table's mirror
-    /// against the exact solve: the cones within 1.5e-5 in sine (2e-6 on average) and the
-    /// spreads within 1.1e-3 relative (1.2e-5 on average), the cells' centre check bounding
-    /// both (measured 1.4e-5 and 1.0e-3 at α = −4°); the cells it hands back to the solve, at
-    /// the kinks near grazing incidence and at the reach's edge, are under 6 % of the queries
-    /// (5.0 % at α = −4°, 3.3 % at 2°). Where the table answers that there is no mirror, the
-    /// solve finds none.
+    /// against the exact solve, at scale tilts over the whole range the parameters allow. At
+    /// the tilts of human hair (|α| ≤ 4°) the cones within 1.5e-5 in sine (2e-6 on average)
+    /// and the spreads within 1.1e-3 relative (1.4e-5 on average), the cells' centre check
+    /// bounding both (measured 1.3e-5 and 9.8e-4 at α = −4°); the cells it hands back to the
+    /// solve, at the kinks near grazing incidence and at the reach's edge, are under 6 % of
+    /// the queries (4.9 % at α = −4°, 3.4 % at 2°, none at 0). At ±10° and ±20° the kinks
+    /// bend more between the centres: within 5e-5 in sine and 5e-3 in spread (measured 4.2e-5
+    /// and 4.2e-3 at ±20°), with a fifth of the queries solved (19 %). Where the table answers
+    /// that there is no mirror, the solve finds none.
     #[test]
     fn mirror_table_follows_the_exact_mirrors() {
-        for alpha_deg in [-4.0f64, 2.0] {
+        for alpha_deg in [-20.0f64, -10.0, -4.0, 0.0, 2.0, 10.0, 20.0] {
+            let hair = alpha_deg.abs() <= 4.0;
+            let (sine_bound, spread_bound, solved_bound) = match hair {
+                true => (1.5e-5, 1.1e-3, 0.06),
+                false => (5e-5, 5e-3, 0.25),
+            };
             let alpha = alpha_deg.to_radians();
             let table = MirrorTable::build(alpha);
             let (mut sine, mut spread, mut sine_sum, mut spread_sum) = (0.0f64, 0.0f64, 0.0, 0.0);
@@ -257,14 +265,17 @@ mod tests {
                 (sine_sum / answered as f64, spread_sum / answered as f64);
             let solved_share = solved as f64 / queries as f64;
             assert!(
-                sine < 1.5e-5 && sine_mean < 3e-6,
+                sine < sine_bound && sine_mean < 3e-6,
                 "α {alpha_deg}°: sine {sine:e}, mean {sine_mean:e}"
             );
             assert!(
-                spread < 1.1e-3 && spread_mean < 3e-5,
+                spread < spread_bound && spread_mean < 3e-5,
                 "α {alpha_deg}°: spread {spread:e}, mean {spread_mean:e}"
             );
-            assert!(solved_share < 0.06, "α {alpha_deg}°: {solved_share} solved");
+            assert!(
+                solved_share < solved_bound,
+                "α {alpha_deg}°: {solved_share} solved"
+            );
         }
     }
 }
