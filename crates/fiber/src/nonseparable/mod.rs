@@ -269,22 +269,23 @@ impl NonSeparable {
     /// energy, where the per-direction θ_d loses up to 17 % at grazing incidence (albedo 0.83
     /// at β = 0.3, θ_i = 1.0; 0.87 at β = 0.04, θ_i = 1.4, measured with `furnace::albedo`).
     pub fn longitudinal(&self, p: usize, theta_i: f64, phi: f64) -> LongitudinalLobe {
-        let mirrors = match p {
+        self.longitudinal_at(p, theta_i, phi, &self.cone_mirrors(p, theta_i, phi))
+    }
+
+    /// R's offsets as lobe p's cone alone needs them: solved for R where the mirror table
+    /// does not give its cone, none otherwise.
+    fn cone_mirrors(&self, p: usize, theta_i: f64, phi: f64) -> [Option<MirrorOffset>; 3] {
+        match p {
             0 if self.mirror_cones.is_none() => self.mirrors(theta_i, phi),
             _ => NO_MIRRORS,
-        };
-        self.longitudinal_at(p, theta_i, phi, &mirrors)
+        }
     }
 
     /// The lobe of mode p ≤ 2 as sampling draws from it: [`Self::cone_lobe`], the lobe the
     /// evaluation reads, with R's offsets solved where the mirror table does not give its cone.
     #[inline]
     fn sampling_lobe(&self, p: usize, theta_i: f64, phi: f64) -> ConeLobe {
-        let mirrors = match p {
-            0 if self.mirror_cones.is_none() => self.mirrors(theta_i, phi),
-            _ => NO_MIRRORS,
-        };
-        self.cone_lobe(p, theta_i, phi, &mirrors)
+        self.cone_lobe(p, theta_i, phi, &self.cone_mirrors(p, theta_i, phi))
     }
 
     /// Whether an evaluation solves R's offsets: for N_R where the rough mirror does not give
