@@ -11,8 +11,10 @@
 //! fraction of min(π − δ, π), which puts the reach's edge on its last column, and stores the
 //! sine of the mirror's inclination and the spread, bilinear in between. A cell with a corner
 //! where the solve finds no offset (the mirror passing behind the pole at grazing incidence,
-//! the reach's edge itself) answers nothing, and the model solves there as before.
-//! `mirror_table_follows_the_exact_mirrors` measures it against the exact solve.
+//! the reach's edge itself), or whose blend misses the solve at its centre by more than
+//! [`SINE_TOLERANCE`] or [`SPREAD_TOLERANCE`] (the kinks near grazing incidence), answers
+//! nothing, and the model solves there as before. `mirror_table_follows_the_exact_mirrors`
+//! measures it against the exact solve.
 
 use crate::special::{atan2_fast, sin_cos_quadrant};
 use crate::table::{fill_rows, locate};
