@@ -183,7 +183,7 @@ impl DEon2011 {
     /// What the tabulated path needs of θ_i alone: its sine and cosine, the prepared
     /// inclination of A(p, h) and the table's θ_i cell, found once per call (sample shares
     /// them between its lobe choice, its θ_o draw and its weight).
-    #[inline]
+    #[inline(always)]
     fn incident(&self, theta_i: f64) -> Incident {
         let (si, ci) = sin_cos_quadrant(theta_i);
         Incident {
@@ -196,7 +196,7 @@ impl DEon2011 {
 
     /// The tabulated fast path's shared values for one (ω_i, ω_o), when the model has a table
     /// and untilted scales (see [`DEon2011::pair_at`]).
-    #[inline]
+    #[inline(always)]
     fn tabulated_pair(&self, wi: FiberAngles, wo: FiberAngles) -> Option<Pair> {
         let table = self.fast_table()?;
         let inc = self.incident(wi.theta);
@@ -208,7 +208,7 @@ impl DEon2011 {
     /// M_p from the sines and cosines of θ_i and θ_o, the table point from η/η′ (found from
     /// cos(θ_o − θ_i) by the half-angle identities) and φ, and R's root h = −sin(φ/2) from
     /// cos(φ/2) alone.
-    #[inline]
+    #[inline(always)]
     fn pair_at(
         &self,
         table: &AzimuthalTable,

@@ -198,7 +198,7 @@ impl AzimuthalTable {
         let eta = self.az.eta;
         let cos2_d = (0.5 * (1.0 + cos_2d)).clamp(0.0, 1.0);
         let sin2_d = 1.0 - cos2_d;
-        eta * cos2_d.sqrt() / (eta * eta - sin2_d).max(1e-300).sqrt()
+        eta * (cos2_d / (eta * eta - sin2_d).max(1e-300)).sqrt()
     }
 
     /// The table coordinates of (θ_i, θ_d, φ), θ_d given by its η/η′ (see
