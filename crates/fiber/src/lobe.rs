@@ -65,8 +65,10 @@ impl LobeValues {
         self.0[lobe.index()]
     }
 
+    #[inline]
     pub fn total(&self) -> DVec3 {
-        self.0.iter().copied().sum()
+        let [r, tt, trt, trrt, rest] = self.0;
+        r + tt + trt + trrt + rest
     }
 }
 

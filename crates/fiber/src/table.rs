@@ -237,7 +237,7 @@ impl AzimuthalTable {
     /// lobes. The same interpolant as the nested lerps of [`AzimuthalTable::taps_nested`]
     /// (within f32 rounding, `corner_weights_match_the_nested_lerps`) in fewer operations and
     /// registers, and one bounds check per pair of neighbouring φ columns.
-    #[inline]
+    #[inline(always)]
     pub fn taps(&self, at: TablePoint) -> [Vec4; 4] {
         let p = self.phi_nodes;
         let slab = THETA_D_NODES * p;
