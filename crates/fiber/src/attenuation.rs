@@ -73,14 +73,18 @@ impl Inclination {
 pub fn attenuation_at(inc: Inclination, h: f64, mu_a: DVec3) -> LobeValues {
     let h = h.clamp(-1.0, 1.0);
     let f = inc.fresnel(h);
-    let [tx, ty, tz, _] = transmittance(mu_a, inc.chord(h)).to_array();
-    let t = DVec3::new(tx, ty, tz);
-    let k = (1.0 - f) * (1.0 - f);
+    let t = transmittance(mu_a, inc.chord(h));
+    let (fv, k) = (f64x4::splat(f), f64x4::splat((1.0 - f) * (1.0 - f)));
+    let ft = fv * t;
     let a1 = k * t;
-    let a2 = a1 * f * t;
-    let a3 = a2 * f * t;
-    let rest = a3 * f * t / (DVec3::ONE - f * t).max(DVec3::splat(1e-300));
-    LobeValues([DVec3::splat(f), a1, a2, a3, rest])
+    let a2 = a1 * ft;
+    let a3 = a2 * ft;
+    let rest = a3 * ft / (f64x4::ONE - ft).fast_max(f64x4::splat(1e-300));
+    let rgb = |x: f64x4| {
+        let [r, g, b, _] = x.to_array();
+        DVec3::new(r, g, b)
+    };
+    LobeValues([DVec3::splat(f), rgb(a1), rgb(a2), rgb(a3), rgb(rest)])
 }
 
 /// The transmittance e^{−μ_a ℓ} of a chord of length ℓ per channel, in the first three of four

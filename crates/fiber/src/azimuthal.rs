@@ -369,7 +369,8 @@ pub fn selection_from(a: &LobeValues) -> [f64; 5] {
     if total <= 0.0 {
         return [0.0; 5];
     }
-    m.map(|x| x / total)
+    let inv_total = 1.0 / total;
+    m.map(|x| x * inv_total)
 }
 
 fn weight(a: &LobeValues, p: usize, weighting: Weighting) -> DVec3 {

@@ -163,7 +163,6 @@ impl Chiang2016 {
         let n = |p: usize| logistic(wrap_pi(phi - at.deflection(p)), self.s) * k;
         [n(0), n(1), n(2), 0.5 / PI]
     }
-
     /// M_p at θ_o for the θ_i of an offset.
     fn m_at(&self, at: &Offset, theta_o: f64) -> [f64; LOBES] {
         let (si, ci) = at.sin_cos_i;
@@ -306,7 +305,8 @@ fn selection(a: &[DVec3; LOBES]) -> [f64; LOBES] {
     let m = a.map(channel_mean);
     let total: f64 = m.iter().sum();
     if total > 0.0 {
-        m.map(|x| x / total)
+        let inv_total = 1.0 / total;
+        m.map(|x| x * inv_total)
     } else {
         [1.0, 0.0, 0.0, 0.0]
     }
