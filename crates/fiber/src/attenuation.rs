@@ -39,15 +39,24 @@ impl Inclination {
     /// The same from sin θ and cos θ (cos θ ≥ 0).
     #[inline]
     pub fn from_sin_cos(sin_theta: f64, cos_theta: f64, eta: f64) -> Self {
-        let s2 = sin_theta * sin_theta;
-        let e2 = eta * eta;
+        // g = η² − sin²θ = η² cos²θ_t: 1/η′² = cos²θ / g and 1/cos θ_t = η / √g, one
+        // division and one root for both.
+        let g = eta * eta - sin_theta * sin_theta;
         let c = cos_theta.abs().max(1e-12);
-        let inside = (e2 - s2).max(0.0);
+        if g <= 0.0 {
+            return Self {
+                eta,
+                cos_theta: cos_theta.abs(),
+                inv_eta_prime_sq: 1.0,
+                inv_cos_theta_t: 1e12,
+            };
+        }
+        let inv_g = 1.0 / g;
         Self {
             eta,
             cos_theta: cos_theta.abs(),
-            inv_eta_prime_sq: if inside > 0.0 { c * c / inside } else { 1.0 },
-            inv_cos_theta_t: 1.0 / (1.0 - s2 / e2).max(0.0).sqrt().max(1e-12),
+            inv_eta_prime_sq: c * c * inv_g,
+            inv_cos_theta_t: (eta * inv_g.sqrt()).min(1e12),
         }
     }
 

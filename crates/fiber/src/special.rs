@@ -76,6 +76,43 @@ fn horner(c: &[f64], x: f64) -> f64 {
     rest.iter().rev().fold(*last, |acc, c| acc * x + c)
 }
 
+/// Σ cₖ xᵏ (k < 9) by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those
+/// in x², then x⁴ and x⁸: a dependency chain of four multiply-adds where Horner's is eight,
+/// for a few more multiplications. The scalar functions on every model's critical path
+/// ([`sin_cos_quadrant`], [`asin_fast`], [`atan2_fast`], [`ln_fast`]) take it, or its twins
+/// [`estrin7`] and [`estrin12`] (`estrin_is_horners_polynomial`).
+#[inline(always)]
+fn estrin9(c: &[f64; 9], x: f64) -> f64 {
+    let pair = |i: usize| c[i] + c[i + 1] * x;
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let low = pair(0) + pair(2) * x2;
+    let high = pair(4) + pair(6) * x2;
+    (low + high * x4) + c[8] * (x4 * x4)
+}
+
+/// [`estrin9`] for seven coefficients.
+#[inline(always)]
+fn estrin7(c: &[f64; 7], x: f64) -> f64 {
+    let pair = |i: usize| c[i] + c[i + 1] * x;
+    let x2 = x * x;
+    let low = pair(0) + pair(2) * x2;
+    let high = pair(4) + c[6] * x2;
+    low + high * (x2 * x2)
+}
+
+/// [`estrin9`] for twelve coefficients.
+#[inline(always)]
+fn estrin12(c: &[f64; 12], x: f64) -> f64 {
+    let pair = |i: usize| c[i] + c[i + 1] * x;
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let q0 = pair(0) + pair(2) * x2;
+    let q1 = pair(4) + pair(6) * x2;
+    let q2 = pair(8) + pair(10) * x2;
+    q0 + (q1 + q2 * x4) * x4
+}
+
 /// sin x / x and cos x as polynomials of degree 8 in t = x² on [0, (π/2)²]: near-minimax
 /// Chebyshev fits (fit error 2e-19 and 4e-18; `crates/fiber/tools/chebyfit.py` makes them),
 /// nine terms each where the Taylor series needs eleven and twelve.
@@ -114,7 +151,7 @@ pub fn sin_cos_quadrant(x: f64) -> (f64, f64) {
         return x.sin_cos();
     }
     let x2 = x * x;
-    (x * horner(&SIN_FIT, x2), horner(&COS_FIT, x2))
+    (x * estrin9(&SIN_FIT, x2), estrin9(&COS_FIT, x2))
 }
 
 /// cos x alone for |x| ≤ π/2, the cosine of [`sin_cos_quadrant`] (same polynomial, same bound).
@@ -123,7 +160,7 @@ pub fn cos_quadrant(x: f64) -> f64 {
     if x.abs() > std::f64::consts::FRAC_PI_2 || x.is_nan() {
         return x.cos();
     }
-    horner(&COS_FIT, x * x)
+    estrin9(&COS_FIT, x * x)
 }
 
 /// (asin √t − √t) / (t √t) on t ∈ [0, ¼] as a polynomial of degree 11: a near-minimax
@@ -159,7 +196,7 @@ pub fn asin_fast(x: f64) -> f64 {
     if a > 1.0 || a.is_nan() {
         return x.asin();
     }
-    let g = |t: f64| horner(&ASIN_FIT, t);
+    let g = |t: f64| estrin12(&ASIN_FIT, t);
     let r = if a <= 0.5 {
         let t = a * a;
         a + a * t * g(t)
@@ -213,7 +250,7 @@ pub fn atan2_fast(y: f64, x: f64) -> f64 {
         (r, 0.0)
     };
     let t = r * r;
-    let a = base + (r + r * t * horner(&ATAN_FIT, t));
+    let a = base + (r + r * t * estrin9(&ATAN_FIT, t));
     let a = if ay > ax {
         std::f64::consts::FRAC_PI_2 - (a - FRAC_PI_2_LO)
     } else {
@@ -259,7 +296,7 @@ pub fn ln_fast(x: f64) -> f64 {
     let f = (m - 1.0) / (m + 1.0);
     let t = f * f;
     let k = k as f64;
-    k * LN2_HI + (2.0 * f + (2.0 * f * t * horner(&LN_FIT, t) + k * LN2_LO))
+    k * LN2_HI + (2.0 * f + (2.0 * f * t * estrin7(&LN_FIT, t) + k * LN2_LO))
 }
 
 /// 2^(j/32), j = 0…31, correctly rounded (50-digit decimal arithmetic): [`exp_fast`]'s table.
@@ -814,6 +851,27 @@ mod tests {
         eprintln!("asin_fast vs f64::asin on [−1, 1]: ≤ {abs:.2e} absolute, {rel:.2e} relative");
         assert!(abs < 4e-16 && rel < 7e-16, "{abs:e} {rel:e}");
         assert!(asin_fast(1.5).is_nan() && asin_fast(f64::NAN).is_nan());
+    }
+
+    /// Estrin's scheme for scalars against Horner's rule, for the three lengths it takes.
+    #[test]
+    fn estrin_is_horners_polynomial() {
+        let c: [f64; 12] = std::array::from_fn(|k| (-0.7f64).powi(k as i32) / (1.0 + k as f64));
+        for j in 0..=200 {
+            let x = -1.3 + 2.6 * j as f64 / 200.0;
+            let got = [
+                (7, estrin7(c[..7].try_into().unwrap(), x)),
+                (9, estrin9(c[..9].try_into().unwrap(), x)),
+                (12, estrin12(&c, x)),
+            ];
+            for (n, g) in got {
+                let want = horner(&c[..n], x);
+                assert!(
+                    (g - want).abs() <= 1e-14 * want.abs().max(1.0),
+                    "{n} terms, x {x}: {g} vs {want}"
+                );
+            }
+        }
     }
 
     /// Estrin's scheme in lanes against Horner's rule in each lane, for the three lengths
