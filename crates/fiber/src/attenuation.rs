@@ -64,7 +64,13 @@ impl Inclination {
     /// so that a segment transmits exp(−μ_a ·) of it.
     #[inline]
     pub fn chord(&self, h: f64) -> f64 {
-        let cos_gamma_t = (1.0 - h * h * self.inv_eta_prime_sq).max(0.0).sqrt();
+        self.chord_from_h_sq(h * h)
+    }
+
+    /// [`Inclination::chord`] from h² (h² ≤ 1), for a caller that has h² and not h.
+    #[inline]
+    pub fn chord_from_h_sq(&self, h_sq: f64) -> f64 {
+        let cos_gamma_t = (1.0 - h_sq * self.inv_eta_prime_sq).max(0.0).sqrt();
         2.0 * cos_gamma_t * self.inv_cos_theta_t
     }
 
@@ -118,7 +124,14 @@ pub fn mean_total_attenuation(inc: Inclination, h: f64, mu_a: DVec3) -> (f64, f6
 /// in SIMD lanes, one division for all three.
 #[inline]
 pub fn mean_total_attenuation_with(inc: Inclination, f: f64, h: f64, mu_a: DVec3) -> f64 {
-    let t = transmittance(mu_a, inc.chord(h.clamp(-1.0, 1.0)));
+    mean_total_attenuation_at_h_sq(inc, f, h.clamp(-1.0, 1.0) * h.clamp(-1.0, 1.0), mu_a)
+}
+
+/// [`mean_total_attenuation_with`] from h² ∈ [0, 1] (R's root in d'Eon 2011 gives h² = 1 −
+/// cos²(φ/2) without a square root).
+#[inline]
+pub fn mean_total_attenuation_at_h_sq(inc: Inclination, f: f64, h_sq: f64, mu_a: DVec3) -> f64 {
+    let t = transmittance(mu_a, inc.chord_from_h_sq(h_sq));
     let k = (1.0 - f) * (1.0 - f);
     let denominator = (f64x4::ONE - f64x4::splat(f) * t).fast_max(f64x4::splat(1e-300));
     let [x, y, z, _] = (t / denominator).to_array();
