@@ -76,6 +76,7 @@ mod lobe_table;
 mod mirror_table;
 pub mod rough_mirror;
 mod selection;
+mod shift_table;
 mod tt_offsets;
 
 use crate::azimuthal::{AzimuthalScattering, Weighting};
@@ -101,6 +102,7 @@ use lobe_table::LobeTable;
 use mirror_table::{MirrorCone, MirrorTable, TabulatedMirror};
 use rough_mirror::RoughMirror;
 use selection::SelectionTable;
+use shift_table::ShiftTable;
 use std::sync::{Arc, OnceLock};
 use tt_offsets::TtOffsets;
 
@@ -146,6 +148,8 @@ pub struct NonSeparable {
     lobes: Option<Arc<LobeTable>>,
     /// R's mirror cone and spread of the tilted model's fast path.
     mirror_cones: Option<Arc<MirrorTable>>,
+    /// TT's and TRT's deflection shift through tilted scales, for the fast path's sampler.
+    shifts: Option<Arc<ShiftTable>>,
     /// N_R off the rough surface, built on first use (tilted model, β ≥
     /// [`rough_mirror::LEAST_BETA`]).
     rough_mirror: OnceLock<Arc<RoughMirror>>,
@@ -181,6 +185,7 @@ impl NonSeparable {
             selection: None,
             lobes: None,
             mirror_cones: None,
+            shifts: None,
             rough_mirror: OnceLock::new(),
         })
     }
@@ -198,6 +203,11 @@ impl NonSeparable {
         self.lobes = Some(Arc::new(lobes));
         if self.scales == Scales::Tilted {
             self.mirror_cones = Some(Arc::new(MirrorTable::build(self.params.alpha)));
+        }
+        if self.azimuthal().scale_tilt != 0.0 {
+            let az = self.azimuthal();
+            let table = ShiftTable::build(|p, theta_i, h| az.deflection_shift(p, theta_i, h));
+            self.shifts = Some(Arc::new(table));
         }
         if self.azimuthal().surface().is_flat_and_smooth() {
             self.deon = self.deon.tabulated();
@@ -570,6 +580,18 @@ impl NonSeparable {
         (lobes(Weighting::Attenuation, s), pdf)
     }
 
+    /// What tilted scales add to Φ(p, h) of TT and TRT
+    /// ([`AzimuthalScattering::deflection_shift`]): from the shift table where it answers,
+    /// else traced.
+    #[inline]
+    fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
+        self.shifts
+            .as_deref()
+            .filter(|_| matches!(p, 1 | 2))
+            .and_then(|table| table.at(p, theta_i, h))
+            .unwrap_or_else(|| self.azimuthal().deflection_shift(p, theta_i, h))
+    }
+
     /// θ_o and φ for TT or TRT by the fixed-point iteration of §3: guess θ_o = −θ_i, then
     /// alternately sample φ given θ_d and θ_o given φ with the same random numbers.
     fn sample_fixed_point(
@@ -585,7 +607,7 @@ impl NonSeparable {
         let az = self.azimuthal();
         // φ = Φ(p, h; η′(θ_d)) + the tilt's shift + the Gaussian offset, as `sample_phi` draws
         // it: only Φ changes from one iteration to the next.
-        let fixed = az.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, u_phi);
+        let fixed = self.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, u_phi);
         for iteration in 1..=self.iterations {
             let theta_d = 0.5 * (theta_o - wi.theta);
             phi = azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + fixed;
