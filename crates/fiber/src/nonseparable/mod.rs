@@ -62,8 +62,9 @@
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
 //! TRT's cones and widths from `lobe_table.rs` and, in the tilted model, the lobe-selection
-//! probabilities from `selection.rs` and R's mirror cone and spread from `mirror_table.rs`;
-//! the model without tables is the reference they are measured against.
+//! probabilities from `selection.rs`, R's mirror cone and spread from `mirror_table.rs` and,
+//! for the sampler's draws, TT's and TRT's tilt shift from `shift_table.rs`; the model without
+//! tables is the reference they are measured against.
 //!
 //! Erratum (both forms): d'Eon et al. 2014 §2.4 prints D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The
 //! first-order derivatives it gives in §2.2, dx_TT/dα₁,₂ = ηz′ − z, lead instead to
