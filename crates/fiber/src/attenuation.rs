@@ -42,7 +42,6 @@ impl Inclination {
         // g = η² − sin²θ = η² cos²θ_t: 1/η′² = cos²θ / g and 1/cos θ_t = η / √g, one
         // division and one root for both.
         let g = eta * eta - sin_theta * sin_theta;
-        let c = cos_theta.abs().max(1e-12);
         if g <= 0.0 {
             return Self {
                 eta,
@@ -52,6 +51,7 @@ impl Inclination {
             };
         }
         let inv_g = 1.0 / g;
+        let c = cos_theta.abs().max(1e-12);
         Self {
             eta,
             cos_theta: cos_theta.abs(),
@@ -116,19 +116,12 @@ pub fn transmittance(mu_a: DVec3, chord: f64) -> f64x4 {
 pub fn mean_total_attenuation(inc: Inclination, h: f64, mu_a: DVec3) -> (f64, f64) {
     let h = h.clamp(-1.0, 1.0);
     let f = inc.fresnel(h);
-    (f, mean_total_attenuation_with(inc, f, h, mu_a))
+    (f, mean_total_attenuation_at_h_sq(inc, f, h * h, mu_a))
 }
 
-/// The total of [`mean_total_attenuation`] for a Fresnel factor f at h the caller already
-/// has (a model that found it from cos γ_i directly): the three channels' (1 − f)² T / (1 − f T)
-/// in SIMD lanes, one division for all three.
-#[inline]
-pub fn mean_total_attenuation_with(inc: Inclination, f: f64, h: f64, mu_a: DVec3) -> f64 {
-    mean_total_attenuation_at_h_sq(inc, f, h.clamp(-1.0, 1.0) * h.clamp(-1.0, 1.0), mu_a)
-}
-
-/// [`mean_total_attenuation_with`] from h² ∈ [0, 1] (R's root in d'Eon 2011 gives h² = 1 −
-/// cos²(φ/2) without a square root).
+/// The total of [`mean_total_attenuation`] for a Fresnel factor f the caller already has,
+/// from h² ∈ [0, 1] (R's root in d'Eon 2011 gives h² = 1 − cos²(φ/2) without a square root):
+/// the three channels' (1 − f)² T / (1 − f T) in SIMD lanes, one division for all three.
 #[inline]
 pub fn mean_total_attenuation_at_h_sq(inc: Inclination, f: f64, h_sq: f64, mu_a: DVec3) -> f64 {
     let t = transmittance(mu_a, inc.chord_from_h_sq(h_sq));

@@ -163,6 +163,7 @@ impl Chiang2016 {
         let n = |p: usize| logistic(wrap_pi(phi - at.deflection(p)), self.s) * k;
         [n(0), n(1), n(2), 0.5 / PI]
     }
+
     /// M_p at θ_o for the θ_i of an offset.
     fn m_at(&self, at: &Offset, theta_o: f64) -> [f64; LOBES] {
         let (si, ci) = at.sin_cos_i;

@@ -196,7 +196,8 @@ impl NonSeparable {
     /// scales (the tilted model, at any α), its lobe selection (`selection.rs`): without it a
     /// sample traces A(p, h) at its offset, and R's rough mirror at every node. The tilted
     /// model also tabulates R's mirror (`mirror_table.rs`), which it otherwise solves by
-    /// Newton's method at every evaluation.
+    /// Newton's method at every evaluation, and, with tilted scales, TT's and TRT's tilt shift
+    /// for the sampler (`shift_table.rs`), which it otherwise traces at every draw.
     pub fn tabulated(mut self) -> Self {
         // R's spread weighs offsets by the selection this builds.
         self.rough_mirror = OnceLock::new();
