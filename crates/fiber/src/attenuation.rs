@@ -26,6 +26,8 @@ pub struct Inclination {
     pub cos_theta: f64,
     /// 1/η′², η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
     pub inv_eta_prime_sq: f64,
+    /// 1/η′, for sin γ_t = h/η′.
+    pub inv_eta_prime: f64,
     /// 1/cos θ_t, sin θ_t = sin θ / η.
     pub inv_cos_theta_t: f64,
 }
@@ -39,24 +41,28 @@ impl Inclination {
     /// The same from sin θ and cos θ (cos θ ≥ 0).
     #[inline]
     pub fn from_sin_cos(sin_theta: f64, cos_theta: f64, eta: f64) -> Self {
-        // g = η² − sin²θ = η² cos²θ_t: 1/η′² = cos²θ / g and 1/cos θ_t = η / √g, one
-        // division and one root for both.
+        // g = η² − sin²θ = η² cos²θ_t: 1/η′² = cos²θ / g, 1/η′ = cos θ / √g and
+        // 1/cos θ_t = η / √g, one division and one root for the three; the root of g runs
+        // beside the division rather than after it.
         let g = eta * eta - sin_theta * sin_theta;
         if g <= 0.0 {
             return Self {
                 eta,
                 cos_theta: cos_theta.abs(),
                 inv_eta_prime_sq: 1.0,
+                inv_eta_prime: 1.0,
                 inv_cos_theta_t: 1e12,
             };
         }
         let inv_g = 1.0 / g;
+        let inv_root_g = g.sqrt() * inv_g;
         let c = cos_theta.abs().max(1e-12);
         Self {
             eta,
             cos_theta: cos_theta.abs(),
             inv_eta_prime_sq: c * c * inv_g,
-            inv_cos_theta_t: (eta * inv_g.sqrt()).min(1e12),
+            inv_eta_prime: c * inv_root_g,
+            inv_cos_theta_t: (eta * inv_root_g).min(1e12),
         }
     }
 
@@ -187,6 +193,9 @@ mod tests {
         let mu = DVec3::new(0.2, 0.7, 1.9);
         for &theta in &[-1.5, -0.6, 0.0, 0.4, 1.3] {
             let inc = Inclination::new(theta, 1.55);
+            let ep = eta_prime(1.55, theta);
+            assert!((inc.inv_eta_prime * ep - 1.0).abs() < 1e-14, "{theta}");
+            assert!((inc.inv_eta_prime_sq * ep * ep - 1.0).abs() < 1e-14, "{theta}");
             for &h in &[-0.99, -0.3, 0.0, 0.5, 1.0] {
                 let gt = gamma_t(h, eta_prime(1.55, theta));
                 let ct = cos_theta_t(1.55, theta);

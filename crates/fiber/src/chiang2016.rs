@@ -69,10 +69,8 @@ pub struct Chiang2016 {
     beta_n: f64,
     /// M_p per lobe (R, TT, TRT, remainder): its variance and its cone's offset from −θ_i.
     cones: ShiftedCones,
-    /// The logistic scale s.
-    s: f64,
-    /// The trimmed logistic's normaliser: the logistic's mass on [−π, π].
-    trim: f64,
+    /// N_p's trimmed logistic.
+    logistic: TrimmedLogistic,
 }
 
 /// The values the lobes share at one offset h: attenuation and deflection geometry.
@@ -95,13 +93,11 @@ impl Chiang2016 {
         let v = [v_r, 0.25 * v_r, 4.0 * v_r, 4.0 * v_r];
         let a = params.alpha;
         let cone_shift = [2.0 * a, -a, -4.0 * a, 0.0];
-        let s = logistic_scale(beta_n);
         Ok(Self {
             params,
             beta_n,
             cones: ShiftedCones::new(v, cone_shift),
-            s,
-            trim: logistic_cdf(PI, s) - logistic_cdf(-PI, s),
+            logistic: TrimmedLogistic::new(logistic_scale(beta_n)),
         })
     }
 
@@ -120,7 +116,7 @@ impl Chiang2016 {
 
     /// The logistic scale s of N_p (Chiang et al. 2016 eq. 8).
     pub fn logistic_scale(&self) -> f64 {
-        self.s
+        self.logistic.s
     }
 
     /// The longitudinal lobe of lobe `p` (0 R, 1 TT, 2 TRT, 3 the remainder) for light at θ_i.
@@ -152,15 +148,14 @@ impl Chiang2016 {
             a: [att.0[0], att.0[1], att.0[2], att.0[3] + att.0[4]],
             gamma_i: asin_fast(h),
             // γ_t = asin(h / η′) (crate::bravais::gamma_t).
-            gamma_t: asin_fast((h * inc.inv_eta_prime_sq.sqrt()).clamp(-1.0, 1.0)),
+            gamma_t: asin_fast((h * inc.inv_eta_prime).clamp(-1.0, 1.0)),
             sin_cos_i: (si, ci),
         }
     }
 
     /// N_p(φ; h) for every lobe.
     fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
-        let k = 1.0 / self.trim;
-        let n = |p: usize| logistic(wrap_pi(phi - at.deflection(p)), self.s) * k;
+        let n = |p: usize| self.logistic.density(wrap_pi(phi - at.deflection(p)));
         [n(0), n(1), n(2), 0.5 / PI]
     }
 
@@ -202,7 +197,7 @@ impl Chiang2016 {
     /// Panels in γ_i such that Φ (slope at most 2 in γ_i for p ≤ 2 and η′ > 1) moves by at
     /// most a third of the logistic's standard deviation πs/√3 between nodes.
     fn panel_count(&self) -> usize {
-        let sigma = PI * self.s / 3f64.sqrt();
+        let sigma = PI * self.logistic.s / 3f64.sqrt();
         let per_panel = PANEL_NODES as f64 * sigma / 3.0;
         ((2.0 * PI / per_panel).ceil() as usize).clamp(2, MAX_PANELS)
     }
@@ -215,7 +210,7 @@ impl Chiang2016 {
         let theta_o = asin_fast(sin_o);
         let phi = match p {
             3 => 2.0 * PI * u_phi - PI,
-            _ => at.deflection(p) + sample_trimmed_logistic(u_phi, self.s),
+            _ => at.deflection(p) + self.logistic.sample(u_phi),
         };
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
         // M and N once for both the density and S (near_pdf's and near's arithmetic).
@@ -278,27 +273,55 @@ pub fn logistic_scale(beta_n: f64) -> f64 {
     (PI / 8.0).sqrt() * (0.265 * beta_n + 1.194 * beta_n.powi(2) + 5.372 * beta_n.powi(22))
 }
 
-/// The logistic density of scale s (Chiang et al. 2016 eq. 10), in the form stable for any x.
-fn logistic(x: f64, s: f64) -> f64 {
-    let e = exp_fast(-x.abs() / s);
-    e / (s * (1.0 + e) * (1.0 + e))
+/// The logistic of scale s trimmed to [−π, π] and renormalised there (Chiang et al. 2016
+/// eq. 10–11), N_p's shape about its deflection. What every call shares (1/s, the mass on
+/// [−π, π] and the CDF at −π) is found once, so a density costs one exponential and one
+/// division and a draw one logarithm and one division.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrimmedLogistic {
+    /// The scale s.
+    s: f64,
+    inv_s: f64,
+    /// The untrimmed CDF at −π.
+    cdf_lo: f64,
+    /// The untrimmed logistic's mass on [−π, π].
+    mass: f64,
+    /// 1 / (s · mass): the density's factor.
+    norm: f64,
 }
 
+impl TrimmedLogistic {
+    pub fn new(s: f64) -> Self {
+        let cdf_lo = logistic_cdf(-PI, s);
+        let mass = logistic_cdf(PI, s) - cdf_lo;
+        Self {
+            s,
+            inv_s: 1.0 / s,
+            cdf_lo,
+            mass,
+            norm: 1.0 / (s * mass),
+        }
+    }
+
+    /// The density at x ∈ [−π, π]: e^{−|x|/s} / (s (1 + e^{−|x|/s})²) / mass, the form
+    /// stable for any x.
+    #[inline]
+    pub fn density(&self, x: f64) -> f64 {
+        let e = exp_fast(-x.abs() * self.inv_s);
+        e * self.norm / ((1.0 + e) * (1.0 + e))
+    }
+
+    /// A draw by inverting the CDF at u ∈ [0, 1].
+    #[inline]
+    pub fn sample(&self, u: f64) -> f64 {
+        let c = (u * self.mass + self.cdf_lo).clamp(1e-300, 1.0 - 1e-16);
+        (-self.s * ln_fast(1.0 / c - 1.0)).clamp(-PI, PI)
+    }
+}
+
+/// The untrimmed logistic's CDF.
 fn logistic_cdf(x: f64, s: f64) -> f64 {
     1.0 / (1.0 + (-x / s).exp())
-}
-
-/// The logistic trimmed to [−π, π] and renormalised there (Chiang et al. 2016 eq. 11).
-pub fn trimmed_logistic(x: f64, s: f64) -> f64 {
-    logistic(x, s) / (logistic_cdf(PI, s) - logistic_cdf(-PI, s))
-}
-
-/// A draw from [`trimmed_logistic`] by inverting its CDF.
-pub fn sample_trimmed_logistic(u: f64, s: f64) -> f64 {
-    let lo = logistic_cdf(-PI, s);
-    let k = logistic_cdf(PI, s) - lo;
-    let c = (u * k + lo).clamp(1e-300, 1.0 - 1e-16);
-    (-s * ln_fast(1.0 / c - 1.0)).clamp(-PI, PI)
 }
 
 /// Lobe choice ∝ the channel mean of A_p; R alone when nothing is left.
@@ -523,17 +546,26 @@ mod tests {
     #[test]
     fn trimmed_logistic_is_normalised_and_sampled_by_its_inverse() {
         for s in [0.01, 0.12, 1.5] {
+            let n = TrimmedLogistic::new(s);
             let rule = GaussLegendre::cached(64);
             let mass: f64 = (0..64)
                 .map(|k| {
                     let a = -PI + 2.0 * PI * k as f64 / 64.0;
-                    rule.integrate(a, a + PI / 32.0, |x| trimmed_logistic(x, s))
+                    rule.integrate(a, a + PI / 32.0, |x| n.density(x))
                 })
                 .sum();
             assert!((mass - 1.0).abs() < 1e-9, "s {s}: {mass}");
+            // Pointwise, the textbook form e^{−x/s} / (s (1 + e^{−x/s})²) over the mass.
+            let trim = logistic_cdf(PI, s) - logistic_cdf(-PI, s);
+            for x in [-3.0, -0.4, 0.0, 0.05, 1.0, 3.1] {
+                let e = (-x / s).exp();
+                let want = e / (s * (1.0 + e) * (1.0 + e)) / trim;
+                let got = n.density(x);
+                assert!((got - want).abs() <= 1e-13 * want, "s {s} x {x}: {got} vs {want}");
+            }
             // The inverse CDF: the draw at u has CDF u.
             for u in [0.01, 0.3, 0.5, 0.9] {
-                let x = sample_trimmed_logistic(u, s);
+                let x = n.sample(u);
                 let lo = logistic_cdf(-PI, s);
                 let cdf = (logistic_cdf(x, s) - lo) / (logistic_cdf(PI, s) - lo);
                 assert!((cdf - u).abs() < 1e-9, "s {s} u {u}: {cdf}");
