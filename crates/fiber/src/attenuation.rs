@@ -195,7 +195,10 @@ mod tests {
             let inc = Inclination::new(theta, 1.55);
             let ep = eta_prime(1.55, theta);
             assert!((inc.inv_eta_prime * ep - 1.0).abs() < 1e-14, "{theta}");
-            assert!((inc.inv_eta_prime_sq * ep * ep - 1.0).abs() < 1e-14, "{theta}");
+            assert!(
+                (inc.inv_eta_prime_sq * ep * ep - 1.0).abs() < 1e-14,
+                "{theta}"
+            );
             for &h in &[-0.99, -0.3, 0.0, 0.5, 1.0] {
                 let gt = gamma_t(h, eta_prime(1.55, theta));
                 let ct = cos_theta_t(1.55, theta);

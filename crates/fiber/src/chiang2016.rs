@@ -561,7 +561,10 @@ mod tests {
                 let e = (-x / s).exp();
                 let want = e / (s * (1.0 + e) * (1.0 + e)) / trim;
                 let got = n.density(x);
-                assert!((got - want).abs() <= 1e-13 * want, "s {s} x {x}: {got} vs {want}");
+                assert!(
+                    (got - want).abs() <= 1e-13 * want,
+                    "s {s} x {x}: {got} vs {want}"
+                );
             }
             // The inverse CDF: the draw at u has CDF u.
             for u in [0.01, 0.3, 0.5, 0.9] {
