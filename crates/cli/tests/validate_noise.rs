@@ -1,7 +1,7 @@
 //! `cuticle validate --noise` end to end (issue 14): two small sweeps of one configuration with
 //! different seeds give every figure a seed-to-seed L1, a floor and a residual, in the CSV and
 //! on stdout; a second sweep with the same seed, or of another configuration, is refused with
-//! one clear error.
+//! one clear error. `--moments` adds each lobe's moments in θ per column.
 
 use std::path::Path;
 use std::process::Command;
@@ -39,6 +39,34 @@ fn write_grid(path: &Path, theta_i: f64) {
     std::fs::write(path, text).unwrap();
 }
 
+/// `moments.csv` of `--moments`: rows for the simulation and both models in R, TT and TRT, and
+/// the simulated TT where transmission puts it, near the specular cone θ_o = −θ_i = −0.75.
+fn check_moments(csv: &str) {
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("config,source,lobe,phi,energy,mean_theta,std_dev_theta,skewness_theta")
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    for source in ["sim", "deon2011", "nonseparable"] {
+        for lobe in ["R", "TT", "TRT"] {
+            assert!(
+                rows.iter().any(|r| r[1] == source && r[2] == lobe),
+                "no {source} {lobe} row"
+            );
+        }
+    }
+    let (mut energy, mut weighted_mean) = (0.0, 0.0);
+    for r in rows.iter().filter(|r| r[1] == "sim" && r[2] == "TT") {
+        let num = |k: usize| r[k].parse::<f64>().unwrap();
+        assert!(num(6) > 0.0 && num(6) < 0.3 && num(7).is_finite(), "{r:?}");
+        energy += num(4);
+        weighted_mean += num(4) * num(5);
+    }
+    let mean = weighted_mean / energy;
+    assert!((mean + 0.75).abs() < 0.1, "simulated TT's mean θ_o {mean}");
+}
+
 #[test]
 fn a_second_seed_gives_every_figure_its_noise_floor() {
     let tmp = tempfile::tempdir().unwrap();
@@ -63,6 +91,7 @@ fn a_second_seed_gives_every_figure_its_noise_floor() {
         "deon2011,nonseparable",
         "--sheets",
         "0",
+        "--moments",
         "--out",
         out.to_str().unwrap(),
     ]);
@@ -101,6 +130,7 @@ fn a_second_seed_gives_every_figure_its_noise_floor() {
     assert_eq!(checked, 4);
     let md = std::fs::read_to_string(out.join("validation.md")).unwrap();
     assert!(md.contains("noise floor") && md.contains("Residuals against the noise floor"));
+    check_moments(&std::fs::read_to_string(out.join("moments.csv")).unwrap());
 
     // The same seed twice would make the floor zero: refused, and so is another configuration.
     for (noise, needle) in [

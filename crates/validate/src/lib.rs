@@ -7,7 +7,8 @@
 //! in θ of the lobe's peak, [`peak`]); [`summary`] aggregates the figures of a whole sweep into
 //! the tables of `validation.md`, and [`sheet`] stacks images into Figure 7-like sheets.
 //! Given two simulations of each configuration with different seeds, [`noise`] measures the
-//! noise floor every figure sits on.
+//! noise floor every figure sits on; [`moments`] gives a lobe's mean, width and skew in θ per
+//! φ column, to say how a model's lobe differs where it does.
 //!
 //! ```no_run
 //! use cuticle_validate::{ModelKind, SimConfig, compare_config};
@@ -21,6 +22,7 @@ pub mod compare;
 pub mod error;
 pub mod metrics;
 pub mod models;
+pub mod moments;
 pub mod noise;
 pub mod peak;
 pub mod pixel_integral;

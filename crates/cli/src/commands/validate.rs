@@ -4,6 +4,8 @@
 //! `sheets/`, and `validate.json`. With `--noise`, a second sweep of the same configurations
 //! with another seed, the models are compared with the mean of the two runs and every figure
 //! gets its noise floor and noise-corrected residual (`cuticle_validate::noise`, issue 14).
+//! With `--moments`, `moments.csv` holds each lobe's mean, width and skew in θ per bright φ
+//! column for the simulation and every model (`cuticle_validate::moments`).
 
 use crate::latlong_io::{png_bytes_with_white, read_exr, white_point};
 use crate::output::OutDir;
@@ -14,7 +16,9 @@ use cuticle_fiber::ranges;
 use cuticle_fiber::{FiberAngles, LatLongImage, Lobe};
 use cuticle_validate::compare::{figures_of, with_noise};
 use cuticle_validate::models::FiberModels;
+use cuticle_validate::moments::column_moments;
 use cuticle_validate::noise::{mean_of, seed_to_seed_l1};
+use cuticle_validate::peak::bright_columns;
 use cuticle_validate::sheet::{abs_difference, stack, total};
 use cuticle_validate::summary::mean_median;
 use cuticle_validate::sweep_dir::FILES;
@@ -49,6 +53,10 @@ pub struct Args {
     /// Importance samples of the non-separable model in each sheet's "sampled" panel.
     #[arg(long, default_value_t = 1_000_000)]
     sheet_samples: u64,
+    /// Also write `moments.csv`: the mean, standard deviation and skewness in θ of R, TT and
+    /// TRT over every bright φ column, for the simulation and each model.
+    #[arg(long)]
+    moments: bool,
     /// Output folder.
     #[arg(long, default_value = "out/validation")]
     out: PathBuf,
@@ -79,6 +87,7 @@ pub fn run(args: Args) -> Result<()> {
     let start = Instant::now();
     let progress = bar(configs.len() as u64, "validate");
     let mut rows_of: Vec<Vec<Row>> = vec![Vec::new(); configs.len()];
+    let mut moments_of: Vec<String> = vec![String::new(); configs.len()];
     let mut fiber_models = FiberModels::default();
     for i in fiber_order(&configs) {
         let config = &configs[i];
@@ -104,7 +113,13 @@ pub fn run(args: Args) -> Result<()> {
             for lobe in Lobe::ALL {
                 rows_of[i].push(Row::new(config, kind, lobe, figures.lobes[lobe.index()]));
             }
+            if args.moments {
+                moments_of[i] += &moment_rows(config, kind.name(), &images, &sim);
+            }
             rendered.push((kind, images));
+        }
+        if args.moments {
+            moments_of[i] += &moment_rows(config, "sim", &sim, &sim);
         }
         if sheet_set.contains(&i) {
             write_sheet(&mut out, config, &sim, &rendered, &mut fiber_models, &args)?;
@@ -116,6 +131,10 @@ pub fn run(args: Args) -> Result<()> {
     let seconds = start.elapsed().as_secs_f64();
 
     out.write("validation.csv", csv(&rows).as_bytes())?;
+    if args.moments {
+        let table = format!("{MOMENTS_HEADER}\n{}", moments_of.concat());
+        out.write("moments.csv", table.as_bytes())?;
+    }
     let noise_note = args.noise.as_ref().map_or(String::new(), |n| {
         format!(
             " Second runs for the noise floor from `{}`; figures against the mean of the two.",
@@ -133,6 +152,39 @@ pub fn run(args: Args) -> Result<()> {
     out.finish(record(&args, &configs, &rows, seconds))?;
     print_summary(&rows, configs.len(), seconds, &args);
     Ok(())
+}
+
+/// `moments.csv`'s columns.
+const MOMENTS_HEADER: &str =
+    "config,source,lobe,phi,energy,mean_theta,std_dev_theta,skewness_theta";
+
+/// `images`' column moments of R, TT and TRT over the bright columns of `sim`, as CSV rows
+/// labelled `source` ([`cuticle_validate::moments`]).
+fn moment_rows(
+    config: &SimConfig,
+    source: &str,
+    images: &[LatLongImage; 5],
+    sim: &[LatLongImage; 5],
+) -> String {
+    let mut rows = String::new();
+    for lobe in [Lobe::R, Lobe::TT, Lobe::TRT] {
+        let p = lobe.index();
+        for (j, _) in bright_columns(&sim[p]) {
+            if let Some(m) = column_moments(&images[p], j) {
+                rows += &format!(
+                    "{},{source},{},{:.6},{:.6e},{:.6},{:.6},{:.4}\n",
+                    config.name,
+                    lobe.name(),
+                    images[p].grid.phi_center(j),
+                    m.energy,
+                    m.mean,
+                    m.std_dev,
+                    m.skewness
+                );
+            }
+        }
+    }
+    rows
 }
 
 /// For every configuration, its second run under `dir`: the same folder name, the same
