@@ -131,6 +131,8 @@ fn a_second_seed_gives_every_figure_its_noise_floor() {
     let md = std::fs::read_to_string(out.join("validation.md")).unwrap();
     assert!(md.contains("noise floor") && md.contains("Residuals against the noise floor"));
     check_moments(&std::fs::read_to_string(out.join("moments.csv")).unwrap());
+    let record = std::fs::read_to_string(out.join("validate.json")).unwrap();
+    assert!(record.contains("\"moments\": true"), "{record}");
 
     // The same seed twice would make the floor zero: refused, and so is another configuration.
     for (noise, needle) in [

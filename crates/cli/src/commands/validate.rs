@@ -323,7 +323,7 @@ fn record(args: &Args, configs: &[SimConfig], rows: &[Row], seconds: f64) -> ser
     json!({
         "params": {
             "sim": args.sim, "noise": args.noise, "models": args.models, "filter": args.filter,
-            "sheets": args.sheets, "sheet_samples": args.sheet_samples,
+            "sheets": args.sheets, "sheet_samples": args.sheet_samples, "moments": args.moments,
         },
         "configurations": configs.len(),
         "seconds": seconds,
