@@ -79,8 +79,8 @@ fn horner(c: &[f64], x: f64) -> f64 {
 /// Σ cₖ xᵏ (k < 9) by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those
 /// in x², then x⁴ and x⁸: a dependency chain of four multiply-adds where Horner's is eight,
 /// for a few more multiplications. The scalar functions on every model's critical path
-/// ([`sin_cos_quadrant`], [`asin_fast`], [`atan2_fast`], [`ln_fast`]) take it, or its twins
-/// [`estrin7`] and [`estrin12`] (`estrin_is_horners_polynomial`).
+/// ([`sin_cos_quadrant`], [`asin_fast`], [`atan2_fast`], [`ln_fast`], [`exp_fast`]) take it,
+/// or its twins [`estrin6`], [`estrin7`] and [`estrin12`] (`estrin_is_horners_polynomial`).
 #[inline(always)]
 fn estrin9(c: &[f64; 9], x: f64) -> f64 {
     let pair = |i: usize| c[i] + c[i + 1] * x;
@@ -863,7 +863,7 @@ mod tests {
         assert!(asin_fast(1.5).is_nan() && asin_fast(f64::NAN).is_nan());
     }
 
-    /// Estrin's scheme for scalars against Horner's rule, for the three lengths it takes.
+    /// Estrin's scheme for scalars against Horner's rule, for the four lengths it takes.
     #[test]
     fn estrin_is_horners_polynomial() {
         let c: [f64; 12] = std::array::from_fn(|k| (-0.7f64).powi(k as i32) / (1.0 + k as f64));
