@@ -4,6 +4,11 @@
 //! instruction counts that a loaded machine does not disturb:
 //! `valgrind --tool=callgrind --toggle-collect='model_calls::run_*' target/release/examples/model_calls deon2011`
 //! then `callgrind_annotate --inclusive=yes` gives each `run_*`'s instructions for CALLS calls.
+//!
+//! With `--time` it times each kind of call instead: 301 rounds of CALLS calls, the three kinds
+//! interleaved, and prints per call the fastest round and the median round. Other programs on a
+//! shared host only ever add time, so the fastest round is the steadiest figure for comparing
+//! two builds run one after the other; the median is the one to quote.
 use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, Marschner2003, NonSeparable};
 use std::hint::black_box;
 
@@ -84,6 +89,10 @@ fn main() {
         }
     };
     let cases = inputs::cases(CALLS);
+    if std::env::args().any(|a| a == "--time") {
+        time_calls(&which, model.as_ref(), h, &cases);
+        return;
+    }
     // Outside the counted functions, so lazy state (quadrature rules, the lobe-energy table)
     // is built before counting.
     let warm = warm_up(model.as_ref(), h, &cases[..8]);
@@ -95,4 +104,27 @@ fn main() {
         CALLS,
         total + 0.0 * warm
     );
+}
+
+/// Per-call nanoseconds of eval, sample and pdf: the fastest and the median of 301 rounds.
+fn time_calls(which: &str, m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) {
+    type Run = fn(&dyn FiberModel, Option<f64>, &[Case]) -> f64;
+    let runs: [(&str, Run); 3] = [("eval", run_eval), ("sample", run_sample), ("pdf", run_pdf)];
+    let mut rounds = [(); 3].map(|_| Vec::with_capacity(301));
+    let mut sink = warm_up(m, h, cases);
+    for _ in 0..301 {
+        for ((_, run), times) in runs.iter().zip(&mut rounds) {
+            let start = std::time::Instant::now();
+            sink += run(m, h, cases);
+            times.push(start.elapsed().as_secs_f64() * 1e9 / CALLS as f64);
+        }
+    }
+    for ((name, _), times) in runs.iter().zip(&mut rounds) {
+        times.sort_by(f64::total_cmp);
+        println!(
+            "{which} {name:6} fastest {:7.1} ns  median {:7.1} ns",
+            times[0], times[150]
+        );
+    }
+    black_box(sink);
 }

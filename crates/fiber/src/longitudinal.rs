@@ -8,11 +8,12 @@
 //! cosine is part of the measure, so M carries no such factor.
 
 use crate::special::{
-    I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, exp_lanes, i0_as, i0_as_lanes, i0_scaled_as,
-    i0_scaled_as_lanes, ln_fast, log_i0, log1m_exp_neg, sin_cos_quadrant,
+    ExpSplit, I0_AS_SPLIT, asin_fast, cos_quadrant, exp_fast, exp_lanes, exp_reduced_f32,
+    exp_split, i0_as, i0_as_lanes_f32, i0_scaled_as, i0_scaled_as_lanes_f32, ln_fast, log_i0,
+    log1m_exp_neg, narrow, narrow_mask, sin_cos_quadrant, widen,
 };
 use std::f64::consts::PI;
-use wide::{CmpLt, f64x4};
+use wide::{CmpLt, f32x4, f64x4};
 
 /// The smallest variance M is evaluated with: below it the lobe is narrower than f64 resolves.
 pub const MIN_VARIANCE: f64 = 1e-9;
@@ -236,7 +237,10 @@ impl LongitudinalLanes {
     /// e^{−2/v})), x = |cos θ_c cos θ_o| / v. Below x = 3.75 I0 by Abramowitz & Stegun 1964
     /// eq. 9.8.1, above it e^x joins the exponent and e^{−x} I0(x) by eq. 9.8.2; every lane
     /// finds both and keeps one. The exponent is at most a rounding above 0 (sin θ_c sin θ_o +
-    /// |cos θ_c cos θ_o| ≤ 1), so it never overflows. Within 1e-6 relative of
+    /// |cos θ_c cos θ_o| ≤ 1), so it never overflows. The arguments, the exponent and its
+    /// reduction x = n ln 2 + r run in double precision; I0's polynomials and e^r, numbers of
+    /// order one whose Abramowitz & Stegun fits are themselves good only to 6e-7, run in single
+    /// precision, four lanes to one register ([`exp_split`]). Within 1e-6 relative of
     /// [`LongitudinalWidth::eval_log_space`] (`lanes_match_the_log_space_reference`).
     #[inline(always)]
     pub fn eval(&self, sin_cone: f64x4, cos_cone: f64x4, sin_o: f64, cos_o: f64) -> [f64; 4] {
@@ -245,11 +249,13 @@ impl LongitudinalLanes {
         let low = x.cmp_lt(split);
         let e = sin_cone.mul_add(f64x4::splat(sin_o), f64x4::splat(-1.0)) * self.inv_v;
         let exponent = low.blend(e, e + x);
-        let i0 = low.blend(
-            i0_as_lanes(x.fast_min(split)),
-            i0_scaled_as_lanes(x.fast_max(split)),
+        let ExpSplit { scale, r } = exp_split(exponent);
+        let (xf, split) = (narrow(x), f32x4::splat(I0_AS_SPLIT as f32));
+        let i0 = narrow_mask(low).blend(
+            i0_as_lanes_f32(xf.fast_min(split)),
+            i0_scaled_as_lanes_f32(xf.fast_max(split)),
         );
-        (exp_lanes(exponent) * i0 * self.norm).to_array()
+        (widen(exp_reduced_f32(r) * i0) * (scale * self.norm)).to_array()
     }
 }
 

@@ -329,10 +329,13 @@ mod tests {
                 // A tiny tilt changes nothing measurable: the loop agrees with the closed
                 // form. (Grazing rays are sensitive: at θ −1.3, h 0.99 the p ≥ 4 remainder,
                 // summed over ~100 internal reflections, moves by −200 α.)
+                // The closed form's transmittance is good to 3e-7 relative
+                // (attenuation::transmittance), the loop's exact.
                 let tiny = tilted_attenuation(theta, h, Surface::smooth(1.55, 1e-12), mu);
                 for p in 0..5 {
                     let d = (tiny.lobes.0[p] - flat.lobes.0[p]).abs().max_element();
-                    assert!(d < 1e-9, "θ {theta} h {h} p {p}: {d}");
+                    let bound = 1e-9 + 3e-7 * flat.lobes.0[p].max_element();
+                    assert!(d < bound, "θ {theta} h {h} p {p}: {d}");
                 }
                 assert!(tiny.back_facing + tiny.wrong_side == DVec3::ZERO);
                 // Lossless and tilted: every bit of power leaves or is lost, at every h.
