@@ -24,9 +24,7 @@ use crate::lobe::{Lobe, LobeValues};
 use crate::longitudinal::{LongitudinalLobe, ShiftedCones};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
-use crate::special::{
-    asin_fast, cos_quadrant, normal_quantile_fast, sin_cos_pair, sin_cos_quadrant,
-};
+use crate::special::{asin_fast, cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
 use crate::table::AzimuthalTable;
 use glam::{DVec3, Vec4};
 use std::f64::consts::PI;
@@ -290,7 +288,8 @@ impl DEon2011 {
 
     /// M_p(θ_o) of R, TT, TRT and TRRT (the remainder shares TRRT's).
     fn m_all(&self, wi: FiberAngles, wo: FiberAngles) -> [f64; 4] {
-        let [(si, ci), (so, co)] = sin_cos_pair(wi.theta, wo.theta);
+        let (si, ci) = sin_cos_quadrant(wi.theta);
+        let (so, co) = sin_cos_quadrant(wo.theta);
         self.m_from(si, ci, so, co)
     }
 

@@ -4,7 +4,7 @@
 //! elementary functions without a library call (`sin_cos_quadrant`, `asin_fast`, `atan2_fast`,
 //! `exp_fast`, `ln_fast`), with SIMD twins for the models' M and N (`exp_lanes`, and in
 //! single precision where a fit is no better than that `exp_lanes_f32` and `i0_as_lanes_f32`;
-//! `asin_pair` and `sin_cos_pair` for two angles), each tested against its reference.
+//! `asin_pair` for two angles), each tested against its reference.
 
 use bytemuck::cast;
 use std::f64::consts::PI;
@@ -161,32 +161,6 @@ pub fn sin_cos_quadrant(x: f64) -> (f64, f64) {
     }
     let x2 = x * x;
     (x * estrin9(&SIN_FIT, x2), estrin9(&COS_FIT, x2))
-}
-
-/// [`sin_cos_quadrant`] of two angles at once (θ_i and θ_o), their polynomials in the two lanes
-/// of one register; where either is outside [−π/2, π/2] or NaN, two scalar calls.
-#[inline(always)]
-pub fn sin_cos_pair(a: f64, b: f64) -> [(f64, f64); 2] {
-    let half = std::f64::consts::FRAC_PI_2;
-    if !(a.abs() <= half && b.abs() <= half) {
-        return [sin_cos_quadrant(a), sin_cos_quadrant(b)];
-    }
-    let x = f64x2::new([a, b]);
-    let x2 = x * x;
-    let [sa, sb] = (x * estrin9_pair(&SIN_FIT, x2)).to_array();
-    let [ca, cb] = estrin9_pair(&COS_FIT, x2).to_array();
-    [(sa, ca), (sb, cb)]
-}
-
-/// [`estrin9`] in each of two lanes, in its order of operations.
-#[inline(always)]
-fn estrin9_pair(c: &[f64; 9], x: f64x2) -> f64x2 {
-    let pair = |i: usize| f64x2::splat(c[i + 1]).mul_add(x, f64x2::splat(c[i]));
-    let x2 = x * x;
-    let x4 = x2 * x2;
-    let low = pair(2).mul_add(x2, pair(0));
-    let high = pair(6).mul_add(x2, pair(4));
-    f64x2::splat(c[8]).mul_add(x4 * x4, high.mul_add(x4, low))
 }
 
 /// cos x alone for |x| ≤ π/2, the cosine of [`sin_cos_quadrant`] (same polynomial, same bound).
@@ -959,29 +933,6 @@ mod tests {
         assert!(worst < 4e-16, "{worst:e}");
         assert_eq!(sin_cos_quadrant(2.0), 2f64.sin_cos());
         assert!(sin_cos_quadrant(f64::NAN).0.is_nan());
-    }
-
-    /// The pair is the scalar function on each angle, to a rounding of its multiply-adds
-    /// (fused only where the CPU has FMA), and falls back to it outside the quadrant.
-    #[test]
-    fn sin_cos_pair_is_sin_cos_quadrant() {
-        let mut worst: f64 = 0.0;
-        let half = std::f64::consts::FRAC_PI_2;
-        for k in -50_000..=50_000 {
-            let (a, b) = (
-                half * k as f64 / 50_000.0,
-                -0.61 * half * k as f64 / 50_000.0,
-            );
-            for (got, x) in sin_cos_pair(a, b).into_iter().zip([a, b]) {
-                let want = sin_cos_quadrant(x);
-                worst = worst
-                    .max((got.0 - want.0).abs())
-                    .max((got.1 - want.1).abs());
-            }
-        }
-        assert!(worst <= 2.3e-16, "{worst:e}");
-        assert_eq!(sin_cos_pair(0.3, 2.0)[1], 2f64.sin_cos());
-        assert!(sin_cos_pair(f64::NAN, 0.1)[0].0.is_nan());
     }
 
     #[test]
