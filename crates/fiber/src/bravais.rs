@@ -1,7 +1,8 @@
 //! Geometry of a smooth circular fiber in the Bravais picture: the projected indices η′ and η″,
 //! the refracted offsets, the azimuthal deflection Φ(p, h) and the internal path length.
 
-use crate::special::{asin_fast, exp_fast, sin_cos_quadrant};
+use crate::special::{asin_fast, asin_pair, exp_fast, sin_cos_quadrant};
+use wide::f64x2;
 use std::f64::consts::PI;
 
 /// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
@@ -21,11 +22,14 @@ pub fn gamma_t(h: f64, eta_prime: f64) -> f64 {
     asin_fast((h / eta_prime).clamp(-1.0, 1.0))
 }
 
-/// Φ(p, h) = 2pγ_t − 2γ_i + pπ (d'Eon et al. 2014 eq. 3), unwrapped.
+/// Φ(p, h) = 2pγ_t − 2γ_i + pπ (d'Eon et al. 2014 eq. 3), unwrapped; γ_i and γ_t from one
+/// two-lane arcsine ([`asin_pair`], [`gamma_t`]'s and asin h's values).
 pub fn azimuthal_deflection(p: u32, h: f64, eta_prime: f64) -> f64 {
     let p = p as f64;
-    let gamma_i = asin_fast(h.clamp(-1.0, 1.0));
-    2.0 * p * gamma_t(h, eta_prime) - 2.0 * gamma_i + p * PI
+    let h = h.clamp(-1.0, 1.0);
+    let sines = f64x2::new([h, (h / eta_prime).clamp(-1.0, 1.0)]);
+    let [gamma_i, gamma_t] = asin_pair(sines).to_array();
+    2.0 * p * gamma_t - 2.0 * gamma_i + p * PI
 }
 
 /// cos θ_t of the refracted inclination, sin θ_t = sin θ / η.
