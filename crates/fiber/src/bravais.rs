@@ -2,8 +2,8 @@
 //! the refracted offsets, the azimuthal deflection Φ(p, h) and the internal path length.
 
 use crate::special::{asin_fast, asin_pair, exp_fast, sin_cos_quadrant};
-use wide::f64x2;
 use std::f64::consts::PI;
+use wide::f64x2;
 
 /// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
 pub fn eta_prime(eta: f64, theta: f64) -> f64 {
