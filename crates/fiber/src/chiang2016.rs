@@ -158,7 +158,8 @@ impl Chiang2016 {
         }
     }
 
-    /// N_p(φ; h) for every lobe: R, TT and TRT in three lanes, the remainder uniform.
+    /// N_p(φ; h) for every lobe: R, TT and TRT in three lanes, the remainder uniform. φ may
+    /// be any azimuth difference: the lanes wrap φ − Φ(p, h) themselves.
     fn n_all(&self, at: &Offset, phi: f64) -> [f64; LOBES] {
         // φ − Φ(p, h) with Φ(p, h) = 2pγ_t − 2γ_i + pπ (Offset::deflection) per lane.
         let x = f64x4::splat(at.gamma_t).mul_neg_add(
@@ -178,14 +179,14 @@ impl Chiang2016 {
     /// The near-field lobes at offset h (module documentation).
     fn near(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> LobeValues {
         let m = self.m_at(at, wo.theta);
-        let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
+        let n = self.n_all(at, wo.phi - wi.phi);
         near_lobes(&m, &n, &at.a)
     }
 
     /// The near-field sampling density at offset h.
     fn near_pdf(&self, wi: FiberAngles, wo: FiberAngles, at: &Offset) -> f64 {
         let m = self.m_at(at, wo.theta);
-        let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
+        let n = self.n_all(at, wo.phi - wi.phi);
         near_density(&m, &n, &at.a)
     }
 
@@ -225,7 +226,7 @@ impl Chiang2016 {
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
         // M and N once for both the density and S (near_pdf's and near's arithmetic).
         let m = self.m_at(at, wo.theta);
-        let n = self.n_all(at, wrap_pi(wo.phi - wi.phi));
+        let n = self.n_all(at, wo.phi - wi.phi);
         let pdf = near_density(&m, &n, &at.a);
         let lobe = if p == 3 {
             Lobe::Rest
