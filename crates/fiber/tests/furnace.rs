@@ -40,15 +40,16 @@ fn check(model: &dyn FiberModel, beta: f64, thetas: &[f64]) {
 }
 
 fn check_within(model: &dyn FiberModel, beta: f64, thetas: &[f64], tolerance: f64) {
-    check_budget(model, beta, thetas, tolerance, |_| 1.0);
+    check_budget(model, beta, thetas, tolerance, 1, |_| 1.0);
 }
 
-/// The albedo at each θ_i is `budget(θ_i)` within `tolerance`.
+/// The albedo at each θ_i is `budget(θ_i)` within `tolerance`, by the rule at `resolution`.
 fn check_budget(
     model: &dyn FiberModel,
     beta: f64,
     thetas: &[f64],
     tolerance: f64,
+    resolution: usize,
     budget: impl Fn(f64) -> f64,
 ) {
     for &theta_i in thetas {
@@ -58,7 +59,7 @@ fn check_budget(
             FurnaceRule {
                 beta,
                 max_shift: 0.0,
-                resolution: 1,
+                resolution,
             },
         );
         let a = est.albedo.x;
@@ -104,7 +105,10 @@ fn nonseparable_conserves_energy() {
 
 /// The default form on flat scales: its rough Fresnel factors lose what the micro-surface
 /// shadows and what stays trapped, so it integrates to its budget, which is below 1 at
-/// grazing incidence.
+/// grazing incidence. At β = 0.04 the rule runs at twice its resolution: R's columns near
+/// |φ| = π, where the reflecting offsets graze, are down to 0.0017 rad wide at θ_i = 1.4
+/// (docs/validation.md, departure 18), which the default rule's finest panels (0.275 β) do
+/// not resolve.
 #[test]
 fn rough_nonseparable_integrates_to_its_budget() {
     for beta in [0.04, 0.3] {
@@ -113,8 +117,12 @@ fn rough_nonseparable_integrates_to_its_budget() {
         for theta_i in THETAS {
             println!("β {beta} θ_i {theta_i}: budget {:.4}", budget(theta_i));
         }
-        let tolerance = if beta <= 0.04 { 0.005 } else { 0.0125 };
-        check_budget(&model, beta, &THETAS, tolerance, budget);
+        let (tolerance, resolution) = if beta <= 0.04 {
+            (0.005, 2)
+        } else {
+            (0.0125, 1)
+        };
+        check_budget(&model, beta, &THETAS, tolerance, resolution, budget);
     }
     // Measurably lossy where the rough exit traps light: not a white furnace in disguise.
     let rough = NonSeparable::new(lossless(0.3)).unwrap();

@@ -1,7 +1,7 @@
-//! R's longitudinal width through tilted scales (docs/validation.md, departure 10): at a fixed
-//! azimuth the simulator's R spreads in θ_o as the tilted non-separable model's
-//! [`MirrorOffset::spread`] says, not as d'Eon et al. 2014 eq. 6's v_R = 2β²(1 − h²), which
-//! is exact only for untilted scales.
+//! R's longitudinal width through tilted scales (docs/validation.md, departures 10 and 18): at
+//! a fixed azimuth the simulator's R spreads in θ_o as the tilted non-separable model's lobe
+//! says (the moments of the light its rough surface reflects to that azimuth), not as d'Eon et
+//! al. 2014 eq. 6's v_R = 2β²(1 − h²), which is exact only for untilted scales.
 //!
 //! The simulator (`cuticle-sim`, fixed seed) fills a lat-long grid with tall columns and short
 //! rows (64 × 512: 0.098 rad in φ, 0.006 rad in θ); in each column where R is bright the
@@ -78,8 +78,10 @@ fn widths(theta_i: f64, alpha_deg: f64) -> (f64, f64) {
         let simulated = column_spread(&sim.lobes[0], j);
         let ours = model.longitudinal(0, theta_i, phi).v.sqrt();
         let eq6 = (2.0 * BETA * BETA * (1.0 - h * h)).sqrt();
-        assert!((ours - (0.5 * BETA * BETA).sqrt() * m.spread).abs() < 1e-12);
-        println!("{phi:+.3} {h:+.3} {simulated:.4} / {ours:.4} / {eq6:.4}");
+        let smooth = (0.5 * BETA * BETA).sqrt() * m.spread;
+        println!(
+            "{phi:+.3} {h:+.3} {simulated:.4} / {ours:.4} / {eq6:.4} (smooth mirror {smooth:.4})"
+        );
         worst_model = worst_model.max((ours / simulated - 1.0).abs());
         worst_eq6 = worst_eq6.max((eq6 / simulated - 1.0).abs());
     }
@@ -124,4 +126,75 @@ fn r_width_is_eq_6_untilted() {
     }
     let (model, _) = widths(1.1, 0.0);
     assert!(model < 0.05, "model's width off by {model:.3}");
+}
+
+/// Where the reflecting offsets graze (θ_i = 1.1, scales tilted toward the root, the roughest
+/// fiber of the grid) the light one offset's slopes carry to a neighbouring azimuth leaves by
+/// that azimuth's micro-normals, so the column at |φ| near π is half as wide as the smooth
+/// mirror's spread there, and its mean sits on neither the smooth mirror's cone nor eq. 6's.
+/// The model's R, pixel-integrated on the simulator's grid, follows the simulated column
+/// means to 0.003 rad (a column's mean carries about 0.001 of noise) and widths to 6 % over
+/// 1.2 ≤ |φ| ≤ 2.75; the smooth mirror's lobe, the model's before departure 18, misses the
+/// widths by 38 % at |φ| = 2.7 and the means by 0.01 rad.
+#[test]
+fn r_follows_the_simulated_columns_where_the_offsets_graze() {
+    use cuticle_validate::moments::column_moments;
+    use cuticle_validate::{PixelRule, integrate_lobes};
+    let (theta_i, alpha, beta) = (1.1, f64::to_radians(-4.0), 0.08);
+    let grid = LatLongGrid {
+        width: 64,
+        height: 256,
+    };
+    let sim = simulate(
+        &SimParams {
+            theta_i,
+            alpha,
+            beta,
+            eta: ETA,
+            mu_a: [0.0; 3],
+            rays: PATHS,
+            seed: 11,
+            grid,
+        },
+        &|_, _| {},
+    )
+    .unwrap();
+    let params = FiberParams {
+        eta: ETA,
+        beta,
+        alpha,
+        mu_a: DVec3::ZERO,
+    };
+    let model = NonSeparable::new(params).unwrap().tabulated();
+    let images = integrate_lobes(
+        &model,
+        theta_i,
+        grid,
+        &PixelRule::for_fiber(ETA, alpha, beta),
+    );
+    let (mut worst_mean, mut worst_width) = (0.0f64, 0.0f64);
+    println!("φ: mean θ simulated / model, width simulated / model");
+    for j in 0..grid.width {
+        let phi = grid.phi_center(j);
+        if !(1.2..=2.75).contains(&phi.abs()) {
+            continue;
+        }
+        let (Some(s), Some(m)) = (
+            column_moments(&sim.lobes[0], j),
+            column_moments(&images[0], j),
+        ) else {
+            panic!("φ {phi}: an empty R column");
+        };
+        println!(
+            "{phi:+.3}: {:.4} / {:.4}, {:.4} / {:.4}",
+            s.mean, m.mean, s.std_dev, m.std_dev
+        );
+        worst_mean = worst_mean.max((m.mean - s.mean).abs());
+        worst_width = worst_width.max((m.std_dev / s.std_dev - 1.0).abs());
+    }
+    assert!(
+        worst_mean < 0.003,
+        "column means off by {worst_mean:.4} rad"
+    );
+    assert!(worst_width < 0.06, "column widths off by {worst_width:.3}");
 }

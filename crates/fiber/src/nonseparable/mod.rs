@@ -28,7 +28,13 @@
 //!   incidence puts the last reflections before the scales cut R off half a radian short.
 //! - R's width is the mirror's first-order spread at fixed φ through the tilted scale
 //!   ([`MirrorOffset::spread`]), where eq. 6's 2β²(1 − h²) holds only for an untilted one: the
-//!   in-plane slope moves θ_o too, and the curve of mirrors θ_o(φ) tilts.
+//!   in-plane slope moves θ_o too, and the curve of mirrors θ_o(φ) tilts. Where the surface is
+//!   rough enough to tabulate (β ≥ [`rough_mirror::LEAST_BETA`]), R's longitudinal lobe is
+//!   instead the one whose mean and variance of sin θ_o are those of the light the rough
+//!   surface reflects into that φ column, integrated in micro-normal space over the offsets
+//!   ([`rough_mirror::column`]): the light a grazing offset's slopes carry to a neighbouring
+//!   azimuth leaves by that azimuth's micro-normals, which one offset's linearised spread
+//!   cannot say (docs/validation.md, departure 18).
 //! - R's azimuth is spread and turned by the rough surface's micro-normals, with the
 //!   simulator's own weights ([`rough_mirror`]), where d'Eon et al. 2011's N_R is the smooth
 //!   mirror's: at grazing offsets the visible micro-normals turn R inward, and past a tilted
@@ -62,7 +68,7 @@
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
 //! TRT's cones and widths from `lobe_table.rs` and, in the tilted model, the lobe-selection
-//! probabilities from `selection.rs`, R's mirror cone and spread from `mirror_table.rs` and,
+//! probabilities from `selection.rs`, R's mirror cone and spread from `mirror_table.rs` (β < [`rough_mirror::LEAST_BETA`]) and,
 //! for the sampler's draws, TT's and TRT's tilt shift from `shift_table.rs`; the model without
 //! tables is the reference they are measured against.
 //!
@@ -195,15 +201,17 @@ impl NonSeparable {
     /// and TRT's lobes (`lobe_table.rs`) and, where A(p, h) is a trace through tilted or rough
     /// scales (the tilted model, at any α), its lobe selection (`selection.rs`): without it a
     /// sample traces A(p, h) at its offset, and R's rough mirror at every node. The tilted
-    /// model also tabulates R's mirror (`mirror_table.rs`), which it otherwise solves by
-    /// Newton's method at every evaluation, and, with tilted scales, TT's and TRT's tilt shift
+    /// model also tabulates R's mirror (`mirror_table.rs`) where R's lobe is not the rough
+    /// mirror's (β < [`rough_mirror::LEAST_BETA`]), which it otherwise solves by Newton's
+    /// method at every evaluation, and, with tilted scales, TT's and TRT's tilt shift
     /// for the sampler (`shift_table.rs`), which it otherwise traces at every draw.
     pub fn tabulated(mut self) -> Self {
         // R's spread weighs offsets by the selection this builds.
         self.rough_mirror = OnceLock::new();
         let lobes = LobeTable::build(|p, theta_i, phi| self.lobe_shape(p, theta_i, phi));
         self.lobes = Some(Arc::new(lobes));
-        if self.scales == Scales::Tilted {
+        // R's lobe is the rough mirror's where there is one.
+        if self.scales == Scales::Tilted && self.params.beta < rough_mirror::LEAST_BETA {
             self.mirror_cones = Some(Arc::new(MirrorTable::build(self.params.alpha)));
         }
         if self.azimuthal().scale_tilt != 0.0 {
@@ -288,7 +296,9 @@ impl NonSeparable {
     /// does not give its cone, none otherwise.
     fn cone_mirrors(&self, p: usize, theta_i: f64, phi: f64) -> [Option<MirrorOffset>; 3] {
         match p {
-            0 if self.mirror_cones.is_none() => self.mirrors(theta_i, phi),
+            0 if self.mirror_cones.is_none() && self.rough_mirror().is_none() => {
+                self.mirrors(theta_i, phi)
+            }
             _ => NO_MIRRORS,
         }
     }
@@ -300,11 +310,10 @@ impl NonSeparable {
         self.cone_lobe(p, theta_i, phi, &self.cone_mirrors(p, theta_i, phi))
     }
 
-    /// Whether an evaluation solves R's offsets: for N_R where the rough mirror does not give
-    /// it, for R's cone where the mirror table does not.
+    /// Whether an evaluation solves R's offsets: where the rough mirror does not give N_R and
+    /// R's lobe (the mirror table then gives the cone where there is one).
     fn needs_mirrors(&self) -> bool {
-        self.scales == Scales::Tilted
-            && (self.mirror_cones.is_none() || self.rough_mirror().is_none())
+        self.scales == Scales::Tilted && self.rough_mirror().is_none()
     }
 
     /// R's mirror at (θ_i, φ): the mirror table's where it answers, else the first of the
@@ -376,10 +385,17 @@ impl NonSeparable {
         match (&self.lobes, p) {
             (Some(table), 1) if tilted => exit(table.tt(theta_i, phi)),
             (Some(table), 2) if tilted => exit(table.trt(theta_i)),
-            (_, 0) => match self.r_cone(theta_i, phi, mirrors) {
-                Some(m) => ConeLobe::from_sin(mirror_variance(self.params.beta, &m), m.sin_theta),
-                None => self.r_lobe_paper(theta_i, phi).into(),
-            },
+            (_, 0) => {
+                if let Some(rough) = self.rough_mirror() {
+                    return rough.lobe(theta_i, theta_i.sin(), phi);
+                }
+                match self.r_cone(theta_i, phi, mirrors) {
+                    Some(m) => {
+                        ConeLobe::from_sin(mirror_variance(self.params.beta, &m), m.sin_theta)
+                    }
+                    None => self.r_lobe_paper(theta_i, phi).into(),
+                }
+            }
             _ => self.longitudinal_at(p, theta_i, phi, mirrors).into(),
         }
     }
@@ -478,10 +494,18 @@ impl NonSeparable {
             // The exact mirror at the offset that reflects to φ (the first of φ, φ − 2π,
             // φ + 2π that one reaches; the mirror table's in the fast path), its variance at
             // fixed φ through the tilted scale.
-            0 => match self.r_cone(theta_i, phi, mirrors) {
-                Some(m) => LongitudinalLobe::new(mirror_variance(beta, &m), asin_fast(m.sin_theta)),
-                None => self.r_lobe_paper(theta_i, phi),
-            },
+            0 => {
+                if let Some(rough) = self.rough_mirror() {
+                    let lobe = rough.lobe(theta_i, theta_i.sin(), phi);
+                    return LongitudinalLobe::new(lobe.v, asin_fast(lobe.sin_cone));
+                }
+                match self.r_cone(theta_i, phi, mirrors) {
+                    Some(m) => {
+                        LongitudinalLobe::new(mirror_variance(beta, &m), asin_fast(m.sin_theta))
+                    }
+                    None => self.r_lobe_paper(theta_i, phi),
+                }
+            }
             1 => {
                 let h = self.tt_offset(theta_i, phi);
                 if tilted {

@@ -18,9 +18,16 @@
 //!    wrapped Gaussian, w the rough surface's A(0, h) of step 1 (for S) or R's selection
 //!    probability (for the sampling density; found at step 1's nodes and linear between
 //!    them), on a periodic grid of φ nodes.
-//! 3. [`RoughMirror::density`] reads N_R bilinear in (θ_i, φ); [`RoughMirror::sample_phi`]
-//!    draws φ_m(h) + μ + s z for the sampler's offset h, so the sampled density is the one the
-//!    table holds up to its interpolation.
+//! 3. [`RoughMirror::build`], R's longitudinal lobe: per θ_i node and every fourth φ node,
+//!    the mean and variance of sin θ_o over the light reflected to φ, by quadrature in
+//!    micro-normal space ([`column`]), matched by the lobe that has them
+//!    ([`ConeLobe::from_sine_moments`]). The quadrature's range in θ_o comes from step 2's
+//!    mixture, each offset's light a bivariate Gaussian in (φ, sin θ_o) about its mirror
+//!    ([`ReflectionMoments::sine_given_offset`]), which alone is too wide where the offsets
+//!    graze (see [`column`]).
+//! 4. [`RoughMirror::density`] reads N_R and [`RoughMirror::lobe`] R's lobe bilinear in
+//!    (θ_i, φ); [`RoughMirror::sample_phi`] draws φ_m(h) + μ + s z for the sampler's offset h,
+//!    so the sampled density is the one the table holds up to its interpolation.
 //!
 //! R's energy is that of step 1's A(0, h), the simulator's own weights: where the smooth mirror
 //! off a tilted scale leaves below the macro surface, the rough surface still sends part of
@@ -28,21 +35,32 @@
 //! reflectance of [`crate::tilted_attenuation`] counts as lost. The lobe selection keeps that
 //! reflectance: it is a proposal, which need not follow S exactly, only cover it.
 
+use super::cones::{cone_r, variance_r};
 use crate::azimuthal::Weighting;
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
+use crate::longitudinal::ConeLobe;
 use crate::special::{asin_fast, normal_pdf_fast, normal_quantile_fast, unit_normal_midpoints};
 use crate::table::{bilinear, fill_rows, locate};
 use crate::tilted_mirror::tilted_mirror;
+use column::{ColumnMoments, RoughSurface};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
+pub mod column;
+
 /// Nodes over θ_i ∈ [−π/2, π/2] (as the selection table's) and over γ ∈ [−π/2, π/2].
 const THETA_I_NODES: usize = 129;
 const GAMMA_NODES: usize = 129;
-/// Periodic nodes over φ ∈ [−π, π).
+/// Periodic nodes over φ ∈ [−π, π) for N_R, and for R's lobe (every fourth of them).
 const PHI_NODES: usize = 1024;
+const LOBE_PHI_NODES: usize = PHI_NODES / 4;
+/// Standard deviations of sin θ_o on either side of its mean over which step 3 integrates a
+/// column, the least standard deviation it takes, and how often it may set the range again.
+const COLUMN_REACH: f64 = 8.0;
+const LEAST_SINE_SD: f64 = 1e-5;
+const COLUMN_PASSES: usize = 4;
 /// The end nodes of θ_i are evaluated this far inside ±π/2, where the incident ray grazes.
 const GRAZING: f64 = 1e-4;
 /// Equal-probability slopes per axis in [`azimuth_spread`].
@@ -78,19 +96,89 @@ pub struct AzimuthSpread {
     pub sd: f64,
 }
 
-/// The mean and standard deviation of the azimuth R leaves at from the surface point at angle
-/// γ (h = sin γ) for light at θ_i, scales tilted by α, Beckmann roughness β: the micro-normal
-/// m = n + s_t t + s_b b (normalised) for slopes s_t, s_b of variance β²/2 each on an
-/// equal-probability grid, weighted by (ω_i·m) G1(ω_i) G1(ω_o) F(ω_i·m) / ((ω_i·n)(m·n)), the
-/// reflections below the macro surface left out; the mean weight is the albedo. `None` where
-/// nothing reflects.
-pub fn azimuth_spread(
+/// The albedo-weighted sums over the slope grid of [`reflection_moments`], each divided by the
+/// number of slopes: the albedo and the moments of the azimuth offset d from the smooth mirror's
+/// and of z = sin θ_o. Linear in the weights, so a blend of two offsets' sums is the sums of
+/// the two offsets' light together.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ReflectionMoments {
+    /// A(0, h) off the rough surface: Σ w / n.
+    pub albedo: f64,
+    /// Σ w d / n.
+    pub d: f64,
+    /// Σ w d² / n.
+    pub dd: f64,
+    /// Σ w z / n.
+    pub z: f64,
+    /// Σ w z² / n.
+    pub zz: f64,
+    /// Σ w d z / n.
+    pub dz: f64,
+}
+
+impl ReflectionMoments {
+    /// The azimuth's albedo, mean and standard deviation; `None` where nothing reflects.
+    pub fn spread(&self) -> Option<AzimuthSpread> {
+        (self.albedo > 0.0).then(|| {
+            let mean = self.d / self.albedo;
+            AzimuthSpread {
+                albedo: self.albedo,
+                mean,
+                sd: (self.dd / self.albedo - mean * mean).max(0.0).sqrt(),
+            }
+        })
+    }
+
+    /// The sums of `self` and `other` blended by `f` (0 gives `self`).
+    fn lerp(&self, other: &Self, f: f64) -> Self {
+        let l = |a: f64, b: f64| a + f * (b - a);
+        Self {
+            albedo: l(self.albedo, other.albedo),
+            d: l(self.d, other.d),
+            dd: l(self.dd, other.dd),
+            z: l(self.z, other.z),
+            zz: l(self.zz, other.zz),
+            dz: l(self.dz, other.dz),
+        }
+    }
+
+    /// sin θ_o of the light leaving at azimuth offset `d_at` from the smooth mirror, as a
+    /// bivariate Gaussian in (d, z) has it: its mean z̄ + (c/s²)(d_at − d̄) and variance
+    /// Var z − c²/s², for the covariance c of d and z and the azimuth's variance s² (`sd`,
+    /// which the caller may have widened). `None` where nothing reflects.
+    fn sine_given_offset(&self, d_at: f64, sd: f64) -> Option<SineMoments> {
+        (self.albedo > 0.0).then(|| {
+            let z = self.z / self.albedo;
+            let d = self.d / self.albedo;
+            let covariance = self.dz / self.albedo - d * z;
+            let slope = covariance / (sd * sd);
+            SineMoments {
+                mean: z + slope * (d_at - d),
+                variance: (self.zz / self.albedo - z * z - slope * covariance).max(0.0),
+            }
+        })
+    }
+}
+
+/// The mean and variance of sin θ_o over some light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SineMoments {
+    pub mean: f64,
+    pub variance: f64,
+}
+
+/// What R reflects from the surface point at angle γ (h = sin γ) for light at θ_i, scales
+/// tilted by α, Beckmann roughness β: the micro-normal m = n + s_t t + s_b b (normalised) for
+/// slopes s_t, s_b of variance β²/2 each on an equal-probability grid, weighted by
+/// (ω_i·m) G1(ω_i) G1(ω_o) F(ω_i·m) / ((ω_i·n)(m·n)), the reflections below the macro surface
+/// left out. `None` where the light meets the back of the scale.
+pub fn reflection_moments(
     theta_i: f64,
     alpha: f64,
     beta: f64,
     eta: f64,
     gamma: f64,
-) -> Option<AzimuthSpread> {
+) -> Option<ReflectionMoments> {
     let (sa, ca) = alpha.sin_cos();
     let (sg, cg) = gamma.sin_cos();
     let n = DVec3::new(sa, ca * cg, -ca * sg);
@@ -106,7 +194,7 @@ pub fn azimuth_spread(
     let phi_m = mirror.z.atan2(mirror.y);
     let sigma = beta * FRAC_1_SQRT_2;
     let slopes = unit_slopes();
-    let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
+    let mut sums = ReflectionMoments::default();
     for &st in slopes {
         for &sb in slopes {
             let m = (n + sigma * (st * t + sb * b)).normalize();
@@ -121,19 +209,35 @@ pub fn azimuth_spread(
             let g = smith_g1(cos_i, c, beta) * smith_g1(o.dot(n), o.dot(m), beta);
             let w = c * g * fresnel_dielectric(c, eta) / (cos_i * m.dot(n));
             let d = crate::frame::wrap_pi(o.z.atan2(o.y) - phi_m);
-            m0 += w;
-            m1 += w * d;
-            m2 += w * d * d;
+            sums.albedo += w;
+            sums.d += w * d;
+            sums.dd += w * d * d;
+            sums.z += w * o.x;
+            sums.zz += w * o.x * o.x;
+            sums.dz += w * d * o.x;
         }
     }
-    (m0 > 0.0).then(|| {
-        let mean = m1 / m0;
-        AzimuthSpread {
-            albedo: m0 / (SLOPES * SLOPES) as f64,
-            mean,
-            sd: (m2 / m0 - mean * mean).max(0.0).sqrt(),
-        }
+    let n = (SLOPES * SLOPES) as f64;
+    Some(ReflectionMoments {
+        albedo: sums.albedo / n,
+        d: sums.d / n,
+        dd: sums.dd / n,
+        z: sums.z / n,
+        zz: sums.zz / n,
+        dz: sums.dz / n,
     })
+}
+
+/// The mean and standard deviation of the azimuth R leaves at ([`reflection_moments`]), and
+/// its albedo. `None` where nothing reflects.
+pub fn azimuth_spread(
+    theta_i: f64,
+    alpha: f64,
+    beta: f64,
+    eta: f64,
+    gamma: f64,
+) -> Option<AzimuthSpread> {
+    reflection_moments(theta_i, alpha, beta, eta, gamma)?.spread()
 }
 
 /// [`SLOPES`] equal-probability slopes of unit variance.
@@ -142,8 +246,15 @@ fn unit_slopes() -> &'static [f64; SLOPES] {
     SLOPES_ONCE.get_or_init(unit_normal_midpoints::<SLOPES>)
 }
 
-/// N_R off the rough surface on a (θ_i, φ) grid, S's and the sampler's, and the spreads the
-/// sampler draws with on a (θ_i, γ) grid.
+/// The sums of [`reflection_moments`] at θ_i node `i`, linear in γ.
+fn moments_at_node(moments: &[ReflectionMoments], i: usize, gamma: f64) -> ReflectionMoments {
+    let (k0, fk) = locate((gamma + FRAC_PI_2) / PI, GAMMA_NODES);
+    let at = i * GAMMA_NODES + k0;
+    moments[at].lerp(&moments[at + 1], fk as f64)
+}
+
+/// N_R off the rough surface on a (θ_i, φ) grid, S's and the sampler's, with R's longitudinal
+/// lobe there, and the spreads the sampler draws with on a (θ_i, γ) grid.
 #[derive(Clone, Debug)]
 pub struct RoughMirror {
     alpha: f64,
@@ -151,11 +262,101 @@ pub struct RoughMirror {
     spreads: Vec<[f32; 4]>,
     /// [θ_i][φ] → (N_R with A(0, h), N_R with R's selection probability).
     density: Vec<[f32; 2]>,
+    /// [θ_i][φ, every fourth node] → (the sine of R's cone plus sin θ_i, R's variance). The
+    /// sine is stored about −sin θ_i, which it follows to within the scales' and the surface's
+    /// deflection, so that the blend in θ_i is exact for the specular cone itself.
+    lobes: Vec<[f32; 2]>,
+}
+
+/// What step 2 leaves at one φ node for step 3: N_R under both weightings, and the mixture's
+/// mean and variance of sin θ_o there.
+#[derive(Clone, Copy, Debug, Default)]
+struct Texel {
+    density: [f32; 2],
+    sine: Option<SineMoments>,
 }
 
 fn theta_i_node(i: usize) -> f64 {
     (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
         .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+}
+
+fn gamma_node(k: usize) -> f64 {
+    -FRAC_PI_2 + PI * k as f64 / (GAMMA_NODES - 1) as f64
+}
+
+/// Channels `c` of a table over θ_i nodes × `phi_nodes` periodic φ nodes, bilinear.
+#[inline]
+fn blend<const N: usize>(
+    table: &[[f32; 2]],
+    phi_nodes: usize,
+    theta_i: f64,
+    phi: f64,
+    c: [usize; N],
+) -> [f64; N] {
+    let (i0, fi) = locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES);
+    let x = unit_period((phi + PI) / (2.0 * PI)) * phi_nodes as f64;
+    let j0 = (x as usize).min(phi_nodes - 1);
+    let fj = (x - j0 as f64) as f32;
+    let j1 = (j0 + 1) % phi_nodes;
+    c.map(|c| {
+        let tap = |i: usize, j: usize| table[i * phi_nodes + j][c];
+        let row = |i: usize| tap(i, j0) + fj * (tap(i, j1) - tap(i, j0));
+        (row(i0) + fi * (row(i0 + 1) - row(i0))) as f64
+    })
+}
+
+/// Row i of R's lobes (step 3): at every fourth φ node, the column's moments of sin θ_o by
+/// quadrature ([`column_about`]), and the lobe that has them. Where no light reaches the node,
+/// d'Eon et al. 2014 §2.3's cone and eq. 6's variance.
+fn fill_lobe_row(surface: &RoughSurface, i: usize, texels: &[Texel], row: &mut [[f32; 2]]) {
+    let theta_i = theta_i_node(i);
+    let sin_i = theta_i.sin();
+    for (j, cell) in row.iter_mut().enumerate() {
+        let phi = -PI + 2.0 * PI * j as f64 / LOBE_PHI_NODES as f64;
+        let column = texels[j * (PHI_NODES / LOBE_PHI_NODES)]
+            .sine
+            .and_then(|guess| column_about(surface, theta_i, phi, guess));
+        let lobe = match column {
+            Some(c) => ConeLobe::from_sine_moments(c.mean_sin, c.variance_sin),
+            None => ConeLobe::from_sin(
+                variance_r(surface.beta, phi),
+                cone_r(theta_i, surface.alpha, phi).sin(),
+            ),
+        };
+        *cell = [lobe.sin_cone + sin_i, lobe.v].map(|x| x as f32);
+    }
+}
+
+/// The column at φ by [`RoughSurface::column`] over [`COLUMN_REACH`] standard deviations of
+/// sin θ_o about its mean: first step 2's mixture's, then the quadrature's own, until the
+/// standard deviation settles (a range too wide under-resolves a narrow column, one too
+/// narrow cuts it; the mixture errs both ways where the offsets graze). Standard deviations
+/// are taken at least [`LEAST_SINE_SD`].
+fn column_about(
+    surface: &RoughSurface,
+    theta_i: f64,
+    phi: f64,
+    guess: SineMoments,
+) -> Option<ColumnMoments> {
+    let (mut mean, mut sd) = (guess.mean, guess.variance.sqrt().max(LEAST_SINE_SD));
+    let mut column = None;
+    for _ in 0..COLUMN_PASSES {
+        let reach = COLUMN_REACH * sd;
+        let lo = (mean - reach).clamp(-1.0, 1.0).asin();
+        let hi = (mean + reach).clamp(-1.0, 1.0).asin();
+        let Some(c) = surface.column(theta_i, phi, lo, hi) else {
+            break;
+        };
+        column = Some(c);
+        let settled = c.variance_sin.sqrt().max(LEAST_SINE_SD);
+        let done = (settled / sd - 1.0).abs() < 0.05 && (c.mean_sin - mean).abs() < 0.5 * sd;
+        (mean, sd) = (c.mean_sin, settled);
+        if done {
+            break;
+        }
+    }
+    column
 }
 
 impl RoughMirror {
@@ -168,44 +369,69 @@ impl RoughMirror {
         selection: impl Fn(f64, f64) -> f64 + Sync,
     ) -> Self {
         let nominal = std::f64::consts::SQRT_2 * beta;
-        let mut spreads = vec![[0.0f32; 4]; THETA_I_NODES * GAMMA_NODES];
-        fill_rows(&mut spreads, GAMMA_NODES, |i, row| {
+        let mut moments = vec![ReflectionMoments::default(); THETA_I_NODES * GAMMA_NODES];
+        fill_rows(&mut moments, GAMMA_NODES, |i, row| {
             let theta_i = theta_i_node(i);
             for (k, cell) in row.iter_mut().enumerate() {
-                let gamma = -FRAC_PI_2 + PI * k as f64 / (GAMMA_NODES - 1) as f64;
-                let s = azimuth_spread(theta_i, alpha, beta, eta, gamma).unwrap_or(AzimuthSpread {
+                let gamma = gamma_node(k);
+                *cell = reflection_moments(theta_i, alpha, beta, eta, gamma).unwrap_or_default();
+            }
+        });
+        let spreads = moments
+            .iter()
+            .enumerate()
+            .map(|(at, m)| {
+                let s = m.spread().unwrap_or(AzimuthSpread {
                     albedo: 0.0,
                     mean: 0.0,
                     sd: nominal,
                 });
                 let sd = s.sd.max(0.25 * nominal);
-                let chosen = selection(theta_i, gamma.sin());
-                *cell = [s.albedo, s.mean, sd, chosen].map(|x| x as f32);
-            }
-        });
+                let (i, k) = (at / GAMMA_NODES, at % GAMMA_NODES);
+                let chosen = selection(theta_i_node(i), gamma_node(k).sin());
+                [s.albedo, s.mean, sd, chosen].map(|x| x as f32)
+            })
+            .collect();
         let mut table = Self {
             alpha,
             spreads,
-            density: vec![[0.0f32; 2]; THETA_I_NODES * PHI_NODES],
+            density: Vec::new(),
+            lobes: vec![[0.0f32; 2]; THETA_I_NODES * LOBE_PHI_NODES],
         };
         // Offsets fine enough that neighbouring mirrors (2Δγ apart) lie well inside the
         // narrowest spread.
         let offsets = ((8.0 * PI / nominal).ceil() as usize).clamp(256, 4096);
-        let mut density = std::mem::take(&mut table.density);
-        fill_rows(&mut density, PHI_NODES, |i, row| {
-            table.fill_density_row(i, offsets, row);
+        let mut texels = vec![Texel::default(); THETA_I_NODES * PHI_NODES];
+        fill_rows(&mut texels, PHI_NODES, |i, row| {
+            table.fill_density_row(i, offsets, &moments, row);
         });
-        table.density = density;
+        let surface = RoughSurface { alpha, beta, eta };
+        let mut lobes = std::mem::take(&mut table.lobes);
+        fill_rows(&mut lobes, LOBE_PHI_NODES, |i, row| {
+            let texels = &texels[i * PHI_NODES..(i + 1) * PHI_NODES];
+            fill_lobe_row(&surface, i, texels, row);
+        });
+        table.lobes = lobes;
+        table.density = texels.iter().map(|t| t.density).collect();
         table
     }
 
     /// Row i of the density: each offset's Gaussian added at the φ nodes within [`REACH`]
-    /// standard deviations of its centre, wrapped.
-    fn fill_density_row(&self, i: usize, offsets: usize, row: &mut [[f32; 2]]) {
+    /// standard deviations of its centre, wrapped; and the mean and variance of sin θ_o over
+    /// the light that reaches each node, each offset's light a bivariate Gaussian in
+    /// (φ, sin θ_o) ([`ReflectionMoments::sine_given_offset`]).
+    fn fill_density_row(
+        &self,
+        i: usize,
+        offsets: usize,
+        moments: &[ReflectionMoments],
+        row: &mut [Texel],
+    ) {
         let theta_i = theta_i_node(i);
         let d_gamma = PI / offsets as f64;
         let d_phi = 2.0 * PI / PHI_NODES as f64;
-        let mut sums = vec![[0.0f64; 2]; PHI_NODES];
+        // Per node: N_R under both weightings, then Σ w g E[z | φ] and Σ w g E[z² | φ].
+        let mut sums = vec![[0.0f64; 4]; PHI_NODES];
         for g in 0..offsets {
             let gamma = -FRAC_PI_2 + (g as f64 + 0.5) * d_gamma;
             let h = gamma.sin();
@@ -215,7 +441,9 @@ impl RoughMirror {
             if w == [0.0, 0.0] {
                 continue;
             }
-            let centre = tilted_mirror(theta_i, self.alpha, h).phi + mean;
+            let sums_here = moments_at_node(moments, i, gamma);
+            let mirror = tilted_mirror(theta_i, self.alpha, h).phi;
+            let centre = mirror + mean;
             let first = ((centre - REACH * sd + PI) / d_phi).ceil() as i64;
             let last = ((centre + REACH * sd + PI) / d_phi).floor() as i64;
             for k in first..=last {
@@ -224,10 +452,21 @@ impl RoughMirror {
                 let cell = &mut sums[k.rem_euclid(PHI_NODES as i64) as usize];
                 cell[0] += w[0] * g;
                 cell[1] += w[1] * g;
+                if let Some(z) = sums_here.sine_given_offset(phi - mirror, sd) {
+                    cell[2] += w[0] * g * z.mean;
+                    cell[3] += w[0] * g * (z.variance + z.mean * z.mean);
+                }
             }
         }
         for (cell, sum) in row.iter_mut().zip(sums) {
-            *cell = sum.map(|x| x as f32);
+            let mean = sum[2] / sum[0];
+            *cell = Texel {
+                density: [sum[0] as f32, sum[1] as f32],
+                sine: (sum[0] > 0.0).then(|| SineMoments {
+                    mean,
+                    variance: (sum[3] / sum[0] - mean * mean).max(0.0),
+                }),
+            };
         }
     }
 
@@ -261,18 +500,20 @@ impl RoughMirror {
     /// N_R at (θ_i, φ) under `weighting`, bilinear in θ_i and φ.
     #[inline]
     pub fn density(&self, theta_i: f64, phi: f64, weighting: Weighting) -> f64 {
-        let (i0, fi) = locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES);
-        let x = unit_period((phi + PI) / (2.0 * PI)) * PHI_NODES as f64;
-        let j0 = (x as usize).min(PHI_NODES - 1);
-        let fj = (x - j0 as f64) as f32;
-        let j1 = (j0 + 1) % PHI_NODES;
         let c = match weighting {
             Weighting::Attenuation => 0,
             Weighting::Selection => 1,
         };
-        let tap = |i: usize, j: usize| self.density[i * PHI_NODES + j][c];
-        let row = |i: usize| tap(i, j0) + fj * (tap(i, j1) - tap(i, j0));
-        (row(i0) + fi * (row(i0 + 1) - row(i0))) as f64
+        blend(&self.density, PHI_NODES, theta_i, phi, [c])[0]
+    }
+
+    /// R's longitudinal lobe at (θ_i, φ), bilinear in θ_i and φ, for light whose sin θ_i is
+    /// `sin_theta_i`: the cone and variance that give it the mean and variance of sin θ_o over
+    /// the light the rough surface reflects to φ.
+    #[inline]
+    pub fn lobe(&self, theta_i: f64, sin_theta_i: f64, phi: f64) -> ConeLobe {
+        let [x, v] = blend(&self.lobes, LOBE_PHI_NODES, theta_i, phi, [0, 1]);
+        ConeLobe::from_sin(v, x - sin_theta_i)
     }
 
     /// R's azimuth for the sampler's offset h, whose smooth mirror leaves at `mirror_phi`:
