@@ -42,6 +42,7 @@ pub(crate) mod testing;
 pub mod tilted_attenuation;
 pub mod tilted_deflection;
 pub mod tilted_mirror;
+pub mod vmf;
 
 pub use chiang2016::Chiang2016;
 pub use deon2011::DEon2011;

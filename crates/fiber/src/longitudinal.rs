@@ -12,6 +12,7 @@ use crate::special::{
     exp_split, i0_as, i0_as_lanes_f32, i0_scaled_as, i0_scaled_as_lanes_f32, ln_fast, log_i0,
     log1m_exp_neg, narrow, narrow_mask, sin_cos_quadrant, widen,
 };
+use crate::vmf::{concentration, mean_cosine};
 use std::f64::consts::PI;
 use wide::{CmpLt, f32x4, f64x4};
 
@@ -111,13 +112,13 @@ impl ConeLobe {
         let mean = mean.clamp(-1.0, 1.0);
         let second = variance.max(0.0) + mean * mean;
         let excess = |kappa: f64| {
-            let a = mean_resultant(kappa);
+            let a = mean_cosine(kappa);
             let x = mean / a;
             a / kappa + (1.0 - 3.0 * a / kappa) * x * x - second
         };
         let largest = 1.0 / MIN_VARIANCE;
-        // The least κ whose mean resultant reaches |mean|: below it the cone leaves the sphere.
-        let least = bisect_ln(1e-9, largest, |kappa| mean_resultant(kappa) - mean.abs());
+        // The least κ whose mean cosine reaches |mean|: below it the cone leaves the sphere.
+        let least = concentration(mean.abs()).min(largest);
         let kappa = if excess(least) <= 0.0 {
             least
         } else if excess(largest) >= 0.0 {
@@ -125,17 +126,7 @@ impl ConeLobe {
         } else {
             bisect_ln(least, largest, |kappa| -excess(kappa))
         };
-        Self::from_sin(1.0 / kappa, mean / mean_resultant(kappa))
-    }
-}
-
-/// A(κ) = coth κ − 1/κ, the mean resultant length of a von Mises–Fisher distribution on the
-/// sphere: its series κ/3 − κ³/45 where the difference would cancel.
-fn mean_resultant(kappa: f64) -> f64 {
-    if kappa < 1e-3 {
-        kappa / 3.0 - kappa.powi(3) / 45.0
-    } else {
-        1.0 / kappa.tanh() - 1.0 / kappa
+        Self::from_sin(1.0 / kappa, mean / mean_cosine(kappa))
     }
 }
 
@@ -411,7 +402,7 @@ mod tests {
     /// The lobe found from the mean and variance of sin θ_o is the lobe that has them: M's
     /// moments by quadrature, inverted, give back its cone and variance, from lobes a few
     /// thousandths of a radian wide to wide ones and near the pole. A mean taken as the cone's
-    /// sine (the mean resultant left out) misses the wide lobes' cones.
+    /// sine (its mean cosine A(κ) left out) misses the wide lobes' cones.
     #[test]
     fn lobe_from_its_sine_moments() {
         for v in [2e-5, 1e-3, 0.02, 0.3] {
