@@ -97,7 +97,7 @@ use std::sync::{Arc, OnceLock};
 pub use azimuthal::{Caustic, eta_star};
 use azimuthal::{Interface, azimuthal, azimuthal_trt};
 pub use deflection::{CubicDeflection, GammaRoots};
-use longitudinal::GaussianLobe;
+use longitudinal::{GaussianLanes, GaussianLobe};
 pub use params::{
     DEFAULT_ALPHA_R_DEG, DEFAULT_BETA_R_DEG, DEFAULT_CAUSTIC_WIDTH_DEG, MarschnerError,
     MarschnerParams,
@@ -111,6 +111,8 @@ pub struct Marschner2003 {
     params: MarschnerParams,
     /// M_R, M_TT, M_TRT.
     lobes: [GaussianLobe; 3],
+    /// The same in SIMD lanes, for evaluation.
+    lanes: GaussianLanes,
     /// Lobe choice over θ_i and TRT's azimuthal proposal over θ_d; built on first use.
     sampling: OnceLock<SamplingTables>,
     /// N_TT and N_TRT over (θ_d, φ), when the model is [`Marschner2003::tabulated`].
@@ -126,6 +128,7 @@ impl Marschner2003 {
         Ok(Self {
             params,
             lobes,
+            lanes: GaussianLanes::new(&lobes),
             sampling: OnceLock::new(),
             table: None,
         })
@@ -167,11 +170,9 @@ impl Marschner2003 {
         &self.params
     }
 
-    /// M_R, M_TT and M_TRT at θ_h (written out: `array::map`'s closure stays a call per lobe).
+    /// M_R, M_TT and M_TRT at θ_h, in lanes ([`GaussianLanes`]).
     fn longitudinal(&self, wi: FiberAngles, wo: FiberAngles) -> [f64; 3] {
-        let theta_h = 0.5 * (wi.theta + wo.theta);
-        let [l0, l1, l2] = &self.lobes;
-        [l0.eval(theta_h), l1.eval(theta_h), l2.eval(theta_h)]
+        self.lanes.eval(0.5 * (wi.theta + wo.theta))
     }
 
     /// S of R, TT and TRT (docs/conventions.md §3 units, see the module documentation) given

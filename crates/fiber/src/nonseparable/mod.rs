@@ -387,7 +387,7 @@ impl NonSeparable {
             (Some(table), 2) if tilted => exit(table.trt(theta_i)),
             (_, 0) => {
                 if let Some(rough) = self.rough_mirror() {
-                    return rough.lobe(theta_i, theta_i.sin(), phi);
+                    return rough.lobe(theta_i, sin_cos_quadrant(theta_i).0, phi);
                 }
                 match self.r_cone(theta_i, phi, mirrors) {
                     Some(m) => {
@@ -496,7 +496,7 @@ impl NonSeparable {
             // fixed φ through the tilted scale.
             0 => {
                 if let Some(rough) = self.rough_mirror() {
-                    let lobe = rough.lobe(theta_i, theta_i.sin(), phi);
+                    let lobe = rough.lobe(theta_i, sin_cos_quadrant(theta_i).0, phi);
                     return LongitudinalLobe::new(lobe.v, asin_fast(lobe.sin_cone));
                 }
                 match self.r_cone(theta_i, phi, mirrors) {
