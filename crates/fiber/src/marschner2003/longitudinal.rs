@@ -1,6 +1,6 @@
 //! The longitudinal lobes M_p: unit-integral Gaussians in θ_h.
 
-use crate::special::{exp_fast, exp_lanes, normal_pdf_fast, normal_quantile_fast};
+use crate::special::{exp_fast, exp_lanes, normal_quantile_fast};
 use std::f64::consts::{FRAC_PI_2, PI};
 use wide::f64x4;
 
@@ -15,7 +15,7 @@ impl GaussianLobe {
     /// M_p(θ_h): the reference [`GaussianLanes::eval`] is measured against.
     #[cfg(test)]
     pub(super) fn eval(&self, theta_h: f64) -> f64 {
-        normal_pdf_fast((theta_h - self.alpha) / self.beta) / self.beta
+        crate::special::normal_pdf_fast((theta_h - self.alpha) / self.beta) / self.beta
     }
 
     /// θ_o = 2θ_h − θ_i with θ_h from M_p by inversion, or `None` beyond ±π/2.

@@ -20,13 +20,13 @@
 
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
-use crate::special::GaussLegendre;
+use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 
 /// Gauss–Legendre nodes over the offsets that present the half vector, and over θ_o.
-const OFFSET_NODES: usize = 16;
-const THETA_NODES: usize = 32;
+const OFFSET_NODES: usize = 12;
+const THETA_NODES: usize = 24;
 /// Slope deviations on either side of the half vector's azimuth that the offsets span.
 const OFFSET_REACH: f64 = 6.0;
 
@@ -36,6 +36,8 @@ pub struct RoughSurface {
     pub alpha: f64,
     pub beta: f64,
     pub eta: f64,
+    sin_alpha: f64,
+    cos_alpha: f64,
 }
 
 /// The light R reflects into one φ column: its energy ∫ L cos θ_o dθ_o (N_R at that φ) and
@@ -48,12 +50,28 @@ pub struct ColumnMoments {
 }
 
 impl RoughSurface {
+    pub fn new(alpha: f64, beta: f64, eta: f64) -> Self {
+        let (sin_alpha, cos_alpha) = alpha.sin_cos();
+        Self {
+            alpha,
+            beta,
+            eta,
+            sin_alpha,
+            cos_alpha,
+        }
+    }
+
     /// L(ω_o) for light at θ_i (module docs): per unit solid angle of ω_o = (θ_o, φ) and per
     /// unit incident power on the fiber's width.
     pub fn reflected(&self, theta_i: f64, theta_o: f64, phi: f64) -> f64 {
-        let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
         let (so, co) = theta_o.sin_cos();
         let o = DVec3::new(so, co * phi.cos(), co * phi.sin());
+        self.reflected_into(incident(theta_i), o)
+    }
+
+    /// [`Self::reflected`] for the incident and outgoing unit vectors (fiber axis x, the
+    /// incident direction in the xy plane).
+    fn reflected_into(&self, wi: DVec3, o: DVec3) -> f64 {
         let sum = wi + o;
         if sum.length_squared() < 1e-24 {
             return 0.0;
@@ -67,9 +85,7 @@ impl RoughSurface {
             return 0.0;
         };
         let rule = GaussLegendre::cached(OFFSET_NODES);
-        0.5 * rule.integrate(lo, hi, |gamma| {
-            self.at_offset(wi, o, m, gamma) * gamma.cos()
-        })
+        0.5 * rule.integrate(lo, hi, |gamma| self.at_offset(wi, o, m, gamma))
     }
 
     /// The offsets γ within `reach` of `zeta` where the reflection into ω_o is not cut off,
@@ -79,7 +95,7 @@ impl RoughSurface {
     /// rather than across, keeps the Gauss–Legendre rule on a smooth integrand where the
     /// offsets graze. `None` where nothing is left.
     fn offsets_lit(&self, wi: DVec3, o: DVec3, zeta: f64, reach: f64) -> Option<(f64, f64)> {
-        let (sa, ca) = self.alpha.sin_cos();
+        let (sa, ca) = (self.sin_alpha, self.cos_alpha);
         let (mut lo, mut hi) = (
             (zeta - reach).max(-FRAC_PI_2),
             (zeta + reach).min(FRAC_PI_2),
@@ -109,10 +125,11 @@ impl RoughSurface {
         (lo < hi).then_some((lo, hi))
     }
 
-    /// The reflection into ω_o at the offset at angle γ per unit solid angle (module docs).
+    /// The reflection into ω_o at the offset at angle γ per unit solid angle (module docs),
+    /// times dh/dγ = cos γ.
     fn at_offset(&self, wi: DVec3, o: DVec3, m: DVec3, gamma: f64) -> f64 {
-        let (sa, ca) = self.alpha.sin_cos();
-        let (sg, cg) = gamma.sin_cos();
+        let (sa, ca) = (self.sin_alpha, self.cos_alpha);
+        let (sg, cg) = sin_cos_quadrant(gamma);
         let n = DVec3::new(sa, ca * cg, -ca * sg);
         let cos_i = wi.dot(n);
         let mn = m.dot(n);
@@ -123,10 +140,10 @@ impl RoughSurface {
         let b = DVec3::new(0.0, sg, cg);
         let (st, sb) = (m.dot(t) / mn, m.dot(b) / mn);
         let beta2 = self.beta * self.beta;
-        let d = (-(st * st + sb * sb) / beta2).exp() / (PI * beta2 * mn.powi(4));
+        let d = exp_fast(-(st * st + sb * sb) / beta2) / (PI * beta2 * mn.powi(4));
         let c = wi.dot(m);
         let g = smith_g1(cos_i, c, self.beta) * smith_g1(o.dot(n), o.dot(m), self.beta);
-        d * g * fresnel_dielectric(c, self.eta) / (4.0 * cos_i)
+        d * g * fresnel_dielectric(c, self.eta) * cg / (4.0 * cos_i)
     }
 
     /// The column at φ over θ_o ∈ [lo, hi] (which should hold all of its light): `None`
@@ -134,11 +151,13 @@ impl RoughSurface {
     pub fn column(&self, theta_i: f64, phi: f64, lo: f64, hi: f64) -> Option<ColumnMoments> {
         let rule = GaussLegendre::cached(THETA_NODES);
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+        let wi = incident(theta_i);
+        let (sp, cp) = phi.sin_cos();
         let (mut m0, mut m1, mut m2) = (0.0, 0.0, 0.0);
         for (x, w) in rule.nodes.iter().zip(&rule.weights) {
-            let theta_o = mid + half * x;
-            let (s, c) = theta_o.sin_cos();
-            let weight = w * half * c * self.reflected(theta_i, theta_o, phi);
+            let (s, c) = sin_cos_quadrant(mid + half * x);
+            let o = DVec3::new(s, c * cp, c * sp);
+            let weight = w * half * c * self.reflected_into(wi, o);
             m0 += weight;
             m1 += weight * s;
             m2 += weight * s * s;
@@ -152,6 +171,12 @@ impl RoughSurface {
             }
         })
     }
+}
+
+/// The unit vector toward the light at θ_i, in the plane φ = 0.
+fn incident(theta_i: f64) -> DVec3 {
+    let (s, c) = theta_i.sin_cos();
+    DVec3::new(s, c, 0.0)
 }
 
 #[cfg(test)]
@@ -169,7 +194,9 @@ mod tests {
     fn binned(surface: &RoughSurface, theta_i: f64, phi0: f64, half_width: f64) -> ColumnMoments {
         const OFFSETS: usize = 2000;
         let slopes = unit_normal_midpoints::<64>();
-        let RoughSurface { alpha, beta, eta } = *surface;
+        let RoughSurface {
+            alpha, beta, eta, ..
+        } = *surface;
         let (sa, ca) = alpha.sin_cos();
         let wi = DVec3::new(theta_i.sin(), theta_i.cos(), 0.0);
         let sigma = beta * FRAC_1_SQRT_2;
@@ -226,11 +253,7 @@ mod tests {
             (0.25, 0.0, 0.08, 2.9),
             (1.4, 0.0, 0.04, 2.945),
         ] {
-            let surface = RoughSurface {
-                alpha: f64::to_radians(alpha_deg),
-                beta,
-                eta: ETA,
-            };
+            let surface = RoughSurface::new(f64::to_radians(alpha_deg), beta, ETA);
             let reference = binned(&surface, theta_i, phi, 0.01);
             let sd = reference.variance_sin.sqrt();
             let (lo, hi) = (reference.mean_sin - 8.0 * sd, reference.mean_sin + 8.0 * sd);

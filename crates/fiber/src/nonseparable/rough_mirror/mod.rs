@@ -330,9 +330,11 @@ fn fill_lobe_row(surface: &RoughSurface, i: usize, texels: &[Texel], row: &mut [
 
 /// The column at φ by [`RoughSurface::column`] over [`COLUMN_REACH`] standard deviations of
 /// sin θ_o about its mean: first step 2's mixture's, then the quadrature's own, until the
-/// standard deviation settles (a range too wide under-resolves a narrow column, one too
-/// narrow cuts it; the mixture errs both ways where the offsets graze). Standard deviations
-/// are taken at least [`LEAST_SINE_SD`].
+/// range fits the column (its standard deviation within 30 % of the one that set the range
+/// and its mean within one of them, so that the range spans 6 to 11 of its own standard
+/// deviations): a range too wide under-resolves a narrow column, one too narrow cuts it, and
+/// the mixture errs both ways where the offsets graze. Standard deviations are taken at least
+/// [`LEAST_SINE_SD`].
 fn column_about(
     surface: &RoughSurface,
     theta_i: f64,
@@ -350,7 +352,7 @@ fn column_about(
         };
         column = Some(c);
         let settled = c.variance_sin.sqrt().max(LEAST_SINE_SD);
-        let done = (settled / sd - 1.0).abs() < 0.05 && (c.mean_sin - mean).abs() < 0.5 * sd;
+        let done = (0.7..1.3).contains(&(settled / sd)) && (c.mean_sin - mean).abs() < sd;
         (mean, sd) = (c.mean_sin, settled);
         if done {
             break;
@@ -405,7 +407,7 @@ impl RoughMirror {
         fill_rows(&mut texels, PHI_NODES, |i, row| {
             table.fill_density_row(i, offsets, &moments, row);
         });
-        let surface = RoughSurface { alpha, beta, eta };
+        let surface = RoughSurface::new(alpha, beta, eta);
         let mut lobes = std::mem::take(&mut table.lobes);
         fill_rows(&mut lobes, LOBE_PHI_NODES, |i, row| {
             let texels = &texels[i * PHI_NODES..(i + 1) * PHI_NODES];
