@@ -11,8 +11,9 @@
 
 use cuticle_fiber::tilted_mirror::{MirrorOffset, tilted_mirror_offset};
 use cuticle_fiber::{FiberParams, LatLongGrid, LatLongImage, NonSeparable};
-use cuticle_sim::{SimParams, simulate};
+use cuticle_sim::{SimParams, SimResult, simulate};
 use glam::DVec3;
+use std::ops::RangeInclusive;
 
 const ETA: f64 = 1.55;
 const BETA: f64 = 0.04;
@@ -36,6 +37,28 @@ fn column_spread(image: &LatLongImage, j: usize) -> f64 {
     (m2 / m0 - mean * mean - row * row / 12.0).sqrt()
 }
 
+/// The simulator's lobes, [`PATHS`] paths of a lossless fiber on `grid`.
+fn simulated_r(theta_i: f64, alpha: f64, beta: f64, grid: LatLongGrid, seed: u64) -> SimResult {
+    let params = SimParams {
+        theta_i,
+        alpha,
+        beta,
+        eta: ETA,
+        mu_a: [0.0; 3],
+        rays: PATHS,
+        seed,
+        grid,
+    };
+    simulate(&params, &|_, _| {}).unwrap()
+}
+
+/// The columns of `grid` whose |φ| lies in `band`, with their φ.
+fn columns(grid: LatLongGrid, band: RangeInclusive<f64>) -> impl Iterator<Item = (usize, f64)> {
+    (0..grid.width)
+        .map(move |j| (j, grid.phi_center(j)))
+        .filter(move |(_, phi)| band.contains(&phi.abs()))
+}
+
 /// The worst relative gaps between the simulated width and the model's, and between the
 /// simulated width and eq. 6's, over the bright columns at 1.2 ≤ |φ| ≤ 2.6.
 fn widths(theta_i: f64, alpha_deg: f64) -> (f64, f64) {
@@ -44,20 +67,7 @@ fn widths(theta_i: f64, alpha_deg: f64) -> (f64, f64) {
         width: 64,
         height: 512,
     };
-    let sim = simulate(
-        &SimParams {
-            theta_i,
-            alpha,
-            beta: BETA,
-            eta: ETA,
-            mu_a: [0.0; 3],
-            rays: PATHS,
-            seed: 10,
-            grid,
-        },
-        &|_, _| {},
-    )
-    .unwrap();
+    let sim = simulated_r(theta_i, alpha, BETA, grid, 10);
     let model = NonSeparable::new(FiberParams {
         eta: ETA,
         beta: BETA,
@@ -67,11 +77,7 @@ fn widths(theta_i: f64, alpha_deg: f64) -> (f64, f64) {
     .unwrap();
     let (mut worst_model, mut worst_eq6) = (0.0f64, 0.0f64);
     println!("θ_i {theta_i} α {alpha_deg}°: φ, h, width simulated / model / eq. 6");
-    for j in 0..grid.width {
-        let phi = grid.phi_center(j);
-        if !(1.2..=2.6).contains(&phi.abs()) {
-            continue;
-        }
+    for (j, phi) in columns(grid, 1.2..=2.6) {
         let Some(m @ MirrorOffset { h, .. }) = tilted_mirror_offset(theta_i, alpha, phi) else {
             continue;
         };
@@ -145,20 +151,7 @@ fn r_follows_the_simulated_columns_where_the_offsets_graze() {
         width: 64,
         height: 256,
     };
-    let sim = simulate(
-        &SimParams {
-            theta_i,
-            alpha,
-            beta,
-            eta: ETA,
-            mu_a: [0.0; 3],
-            rays: PATHS,
-            seed: 11,
-            grid,
-        },
-        &|_, _| {},
-    )
-    .unwrap();
+    let sim = simulated_r(theta_i, alpha, beta, grid, 11);
     let params = FiberParams {
         eta: ETA,
         beta,
@@ -174,11 +167,7 @@ fn r_follows_the_simulated_columns_where_the_offsets_graze() {
     );
     let (mut worst_mean, mut worst_width) = (0.0f64, 0.0f64);
     println!("φ: mean θ simulated / model, width simulated / model");
-    for j in 0..grid.width {
-        let phi = grid.phi_center(j);
-        if !(1.2..=2.75).contains(&phi.abs()) {
-            continue;
-        }
+    for (j, phi) in columns(grid, 1.2..=2.75) {
         let (Some(s), Some(m)) = (
             column_moments(&sim.lobes[0], j),
             column_moments(&images[0], j),
