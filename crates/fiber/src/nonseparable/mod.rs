@@ -39,7 +39,9 @@
 //!   simulator's own weights ([`rough_mirror`]), where d'Eon et al. 2011's N_R is the smooth
 //!   mirror's: at grazing offsets the visible micro-normals turn R inward, and past a tilted
 //!   scale's last smooth mirror the rough one still lets R out. Its energy is that rough
-//!   reflectance's (β ≥ [`rough_mirror::LEAST_BETA`]).
+//!   reflectance's (β ≥ [`rough_mirror::LEAST_BETA`]); S's N_R is what the rough surface
+//!   reflects into each φ column, by the same quadrature in micro-normal space as R's lobe
+//!   below, and the sampler's a mixture of each offset's spread taken as a Gaussian in φ.
 //! - The totally reflected TT power is reflected inside (Fresnel factor 1) and feeds TRT and
 //!   beyond, exactly as in the simulation; TT's and TRT's cones are the clamped rotations
 //!   continued past the edge ([`cones::cone_tt_tilted`]), without the pole.

@@ -14,22 +14,25 @@
 //! 1. [`azimuth_spread`]: at one (θ_i, γ) the mean μ and standard deviation s of the reflected
 //!    azimuth about the smooth mirror's, over a product grid of equal-probability slopes with
 //!    the simulator's weights. [`RoughMirror`] holds them on a (θ_i, γ) grid.
-//! 2. [`RoughMirror::build`]: per θ_i node, N_R(φ) = ½ ∫ w(h) g(φ − φ_m(h) − μ; s) dh, g a
-//!    wrapped Gaussian, w the rough surface's A(0, h) of step 1 (for S) or R's selection
-//!    probability (for the sampling density; found at step 1's nodes and linear between
-//!    them), on a periodic grid of φ nodes.
-//! 3. [`RoughMirror::build`], R's longitudinal lobe: per θ_i node and every fourth φ node,
-//!    the mean and variance of sin θ_o over the light reflected to φ, by quadrature in
-//!    micro-normal space ([`column`]), matched by the lobe that has them
-//!    ([`ConeLobe::from_sine_moments`]). The quadrature's range in θ_o comes from step 2's
-//!    mixture, each offset's light a bivariate Gaussian in (φ, sin θ_o) about its mirror
-//!    ([`ReflectionMoments::sine_given_offset`]), which alone is too wide where the offsets
-//!    graze (see [`column`]).
+//! 2. [`RoughMirror::build`], the mixture: per θ_i node, N_R(φ) = ½ ∫ w(h) g(φ − φ_m(h) − μ;
+//!    s) dh, g a wrapped Gaussian, w the rough surface's A(0, h) of step 1 or R's selection
+//!    probability (found at step 1's nodes and linear between them), on a periodic grid of φ
+//!    nodes, and with it the mean and variance of sin θ_o there, each offset's light a
+//!    bivariate Gaussian in (φ, sin θ_o) about its mirror
+//!    ([`ReflectionMoments::sine_given_offset`]). Under the selection probability this is the
+//!    sampling density; the rest places step 3's quadrature.
+//! 3. [`RoughMirror::build`], R's column: per θ_i node and every fourth φ node, the light
+//!    reflected to φ by quadrature in micro-normal space ([`column`]): its energy, which is
+//!    N_R for S, and the mean and variance of sin θ_o, matched by the lobe that has them
+//!    ([`ConeLobe::from_sine_moments`]). Step 2's mixture alone is too wide in θ_o where the
+//!    offsets graze, and its Gaussians in φ misplace N_R there (docs/validation.md, departure
+//!    18).
 //! 4. [`RoughMirror::density`] reads N_R and [`RoughMirror::lobe`] R's lobe bilinear in
 //!    (θ_i, φ); [`RoughMirror::sample_phi`] draws φ_m(h) + μ + s z for the sampler's offset h,
-//!    so the sampled density is the one the table holds up to its interpolation.
+//!    so the sampled density is the one step 2's table holds up to its interpolation.
 //!
-//! R's energy is that of step 1's A(0, h), the simulator's own weights: where the smooth mirror
+//! R's energy is that of step 1's A(0, h), the simulator's own weights (step 3's columns
+//! integrate to it; `density_keeps_the_energy`): where the smooth mirror
 //! off a tilted scale leaves below the macro surface, the rough surface still sends part of
 //! the light out (the simulated R reaches past the smooth one there), which the smooth-mirror
 //! reflectance of [`crate::tilted_attenuation`] counts as lost. The lobe selection keeps that
@@ -53,9 +56,9 @@ pub mod column;
 /// Nodes over θ_i ∈ [−π/2, π/2] (as the selection table's) and over γ ∈ [−π/2, π/2].
 const THETA_I_NODES: usize = 129;
 const GAMMA_NODES: usize = 129;
-/// Periodic nodes over φ ∈ [−π, π) for N_R, and for R's lobe (every fourth of them).
+/// Periodic nodes over φ ∈ [−π, π) for step 2's mixture, and for step 3's columns (every fourth).
 const PHI_NODES: usize = 1024;
-const LOBE_PHI_NODES: usize = PHI_NODES / 4;
+const COLUMN_PHI_NODES: usize = PHI_NODES / 4;
 /// Standard deviations of sin θ_o on either side of its mean over which step 3 integrates a
 /// column, the least standard deviation it takes, and how often it may set the range again.
 const COLUMN_REACH: f64 = 8.0;
@@ -253,26 +256,27 @@ fn moments_at_node(moments: &[ReflectionMoments], i: usize, gamma: f64) -> Refle
     moments[at].lerp(&moments[at + 1], fk as f64)
 }
 
-/// N_R off the rough surface on a (θ_i, φ) grid, S's and the sampler's, with R's longitudinal
-/// lobe there, and the spreads the sampler draws with on a (θ_i, γ) grid.
+/// N_R off the rough surface on (θ_i, φ) grids, S's and the sampler's, with R's longitudinal
+/// lobe, and the spreads the sampler draws with on a (θ_i, γ) grid.
 #[derive(Clone, Debug)]
 pub struct RoughMirror {
     alpha: f64,
     /// [θ_i][γ] → (A, μ, s, R's selection probability).
     spreads: Vec<[f32; 4]>,
-    /// [θ_i][φ] → (N_R with A(0, h), N_R with R's selection probability).
-    density: Vec<[f32; 2]>,
-    /// [θ_i][φ, every fourth node] → (the sine of R's cone plus sin θ_i, R's variance). The
-    /// sine is stored about −sin θ_i, which it follows to within the scales' and the surface's
-    /// deflection, so that the blend in θ_i is exact for the specular cone itself.
-    lobes: Vec<[f32; 2]>,
+    /// [θ_i][φ] → N_R with R's selection probability (step 2).
+    selection: Vec<[f32; 1]>,
+    /// [θ_i][φ, every fourth node] → (the sine of R's cone plus sin θ_i, R's variance, N_R
+    /// with A(0, h)) (step 3). The sine is stored about −sin θ_i, which it follows to within
+    /// the scales' and the surface's deflection, so that the blend in θ_i is exact for the
+    /// specular cone itself.
+    columns: Vec<[f32; 3]>,
 }
 
-/// What step 2 leaves at one φ node for step 3: N_R under both weightings, and the mixture's
-/// mean and variance of sin θ_o there.
+/// What step 2 leaves at one φ node: the mixture's N_R under R's selection probability, and
+/// its mean and variance of sin θ_o (under A(0, h)) for step 3.
 #[derive(Clone, Copy, Debug, Default)]
 struct Texel {
-    density: [f32; 2],
+    selection: f32,
     sine: Option<SineMoments>,
 }
 
@@ -287,8 +291,8 @@ fn gamma_node(k: usize) -> f64 {
 
 /// Channels `c` of a table over θ_i nodes × `phi_nodes` periodic φ nodes, bilinear.
 #[inline]
-fn blend<const N: usize>(
-    table: &[[f32; 2]],
+fn blend<const K: usize, const N: usize>(
+    table: &[[f32; K]],
     phi_nodes: usize,
     theta_i: f64,
     phi: f64,
@@ -306,15 +310,15 @@ fn blend<const N: usize>(
     })
 }
 
-/// Row i of R's lobes (step 3): at every fourth φ node, the column's moments of sin θ_o by
-/// quadrature ([`column_about`]), and the lobe that has them. Where no light reaches the node,
-/// d'Eon et al. 2014 §2.3's cone and eq. 6's variance.
-fn fill_lobe_row(surface: &RoughSurface, i: usize, texels: &[Texel], row: &mut [[f32; 2]]) {
+/// Row i of R's columns (step 3): at every fourth φ node, the column's energy and moments of
+/// sin θ_o by quadrature ([`column_about`]), and the lobe that has them. Where no light
+/// reaches the node, no energy, and d'Eon et al. 2014 §2.3's cone and eq. 6's variance.
+fn fill_column_row(surface: &RoughSurface, i: usize, texels: &[Texel], row: &mut [[f32; 3]]) {
     let theta_i = theta_i_node(i);
     let sin_i = theta_i.sin();
     for (j, cell) in row.iter_mut().enumerate() {
-        let phi = -PI + 2.0 * PI * j as f64 / LOBE_PHI_NODES as f64;
-        let column = texels[j * (PHI_NODES / LOBE_PHI_NODES)]
+        let phi = -PI + 2.0 * PI * j as f64 / COLUMN_PHI_NODES as f64;
+        let column = texels[j * (PHI_NODES / COLUMN_PHI_NODES)]
             .sine
             .and_then(|guess| column_about(surface, theta_i, phi, guess));
         let lobe = match column {
@@ -324,7 +328,8 @@ fn fill_lobe_row(surface: &RoughSurface, i: usize, texels: &[Texel], row: &mut [
                 cone_r(theta_i, surface.alpha, phi).sin(),
             ),
         };
-        *cell = [lobe.sin_cone + sin_i, lobe.v].map(|x| x as f32);
+        let energy = column.map_or(0.0, |c| c.energy);
+        *cell = [lobe.sin_cone + sin_i, lobe.v, energy].map(|x| x as f32);
     }
 }
 
@@ -397,32 +402,32 @@ impl RoughMirror {
         let mut table = Self {
             alpha,
             spreads,
-            density: Vec::new(),
-            lobes: vec![[0.0f32; 2]; THETA_I_NODES * LOBE_PHI_NODES],
+            selection: Vec::new(),
+            columns: vec![[0.0f32; 3]; THETA_I_NODES * COLUMN_PHI_NODES],
         };
         // Offsets fine enough that neighbouring mirrors (2Δγ apart) lie well inside the
         // narrowest spread.
         let offsets = ((8.0 * PI / nominal).ceil() as usize).clamp(256, 4096);
         let mut texels = vec![Texel::default(); THETA_I_NODES * PHI_NODES];
         fill_rows(&mut texels, PHI_NODES, |i, row| {
-            table.fill_density_row(i, offsets, &moments, row);
+            table.fill_mixture_row(i, offsets, &moments, row);
         });
         let surface = RoughSurface::new(alpha, beta, eta);
-        let mut lobes = std::mem::take(&mut table.lobes);
-        fill_rows(&mut lobes, LOBE_PHI_NODES, |i, row| {
+        let mut columns = std::mem::take(&mut table.columns);
+        fill_rows(&mut columns, COLUMN_PHI_NODES, |i, row| {
             let texels = &texels[i * PHI_NODES..(i + 1) * PHI_NODES];
-            fill_lobe_row(&surface, i, texels, row);
+            fill_column_row(&surface, i, texels, row);
         });
-        table.lobes = lobes;
-        table.density = texels.iter().map(|t| t.density).collect();
+        table.columns = columns;
+        table.selection = texels.iter().map(|t| [t.selection]).collect();
         table
     }
 
-    /// Row i of the density: each offset's Gaussian added at the φ nodes within [`REACH`]
+    /// Row i of step 2's mixture: each offset's Gaussian added at the φ nodes within [`REACH`]
     /// standard deviations of its centre, wrapped; and the mean and variance of sin θ_o over
     /// the light that reaches each node, each offset's light a bivariate Gaussian in
     /// (φ, sin θ_o) ([`ReflectionMoments::sine_given_offset`]).
-    fn fill_density_row(
+    fn fill_mixture_row(
         &self,
         i: usize,
         offsets: usize,
@@ -463,7 +468,7 @@ impl RoughMirror {
         for (cell, sum) in row.iter_mut().zip(sums) {
             let mean = sum[2] / sum[0];
             *cell = Texel {
-                density: [sum[0] as f32, sum[1] as f32],
+                selection: sum[1] as f32,
                 sine: (sum[0] > 0.0).then(|| SineMoments {
                     mean,
                     variance: (sum[3] / sum[0] - mean * mean).max(0.0),
@@ -502,11 +507,10 @@ impl RoughMirror {
     /// N_R at (θ_i, φ) under `weighting`, bilinear in θ_i and φ.
     #[inline]
     pub fn density(&self, theta_i: f64, phi: f64, weighting: Weighting) -> f64 {
-        let c = match weighting {
-            Weighting::Attenuation => 0,
-            Weighting::Selection => 1,
-        };
-        blend(&self.density, PHI_NODES, theta_i, phi, [c])[0]
+        match weighting {
+            Weighting::Attenuation => blend(&self.columns, COLUMN_PHI_NODES, theta_i, phi, [2])[0],
+            Weighting::Selection => blend(&self.selection, PHI_NODES, theta_i, phi, [0])[0],
+        }
     }
 
     /// R's longitudinal lobe at (θ_i, φ), bilinear in θ_i and φ, for light whose sin θ_i is
@@ -514,7 +518,7 @@ impl RoughMirror {
     /// the light the rough surface reflects to φ.
     #[inline]
     pub fn lobe(&self, theta_i: f64, sin_theta_i: f64, phi: f64) -> ConeLobe {
-        let [x, v] = blend(&self.lobes, LOBE_PHI_NODES, theta_i, phi, [0, 1]);
+        let [x, v] = blend(&self.columns, COLUMN_PHI_NODES, theta_i, phi, [0, 1]);
         ConeLobe::from_sin(v, x - sin_theta_i)
     }
 
@@ -579,7 +583,8 @@ mod tests {
     }
 
     /// The spread moves R in φ and keeps its energy: ∫ N_R dφ = ½ ∫ A(0, h) dh with step 1's
-    /// albedo, and the same for the selection weights.
+    /// albedo, where S's N_R is step 3's columns (a quadrature over micro-normals, not over
+    /// step 1's slope grid), and the same for the mixture under the selection weights.
     #[test]
     fn density_keeps_the_energy() {
         for (alpha_deg, beta) in [(-4.0, 0.04), (2.0, 0.08), (0.0, 0.02)] {
