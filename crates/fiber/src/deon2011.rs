@@ -205,6 +205,26 @@ impl DEon2011 {
         Some(self.pair_at(table, &inc, so, co, eta_ratio, wrap_pi(wo.phi - wi.phi)))
     }
 
+    /// [`DEon2011::tabulated_pair`] with the table's selection channels alone
+    /// ([`AzimuthalTable::selection_taps`]), for the density. Written out beside it rather
+    /// than generic over the taps: the generic form slowed eval by half in the loop harness
+    /// (code generation; BENCHMARKS.md).
+    #[inline(always)]
+    fn tabulated_selection_pair(&self, wi: FiberAngles, wo: FiberAngles) -> Option<Pair<[f32; 4]>> {
+        let table = self.fast_table()?;
+        let inc = self.incident(wi.theta);
+        let (so, co) = sin_cos_quadrant(wo.theta);
+        let eta_ratio = table.eta_ratio_from_cos_2d(inc.ci * co + inc.si * so);
+        let phi = wrap_pi(wo.phi - wi.phi);
+        let point = table.point_in_row(inc.cell, eta_ratio, phi);
+        Some(Pair {
+            m: self.m_from(inc.si, inc.ci, so, co),
+            taps: table.selection_taps(point),
+            inclination: inc.inclination,
+            cos_half_phi: cos_quadrant(0.5 * phi).max(0.0),
+        })
+    }
+
     /// M_p from the sines and cosines of θ_i and θ_o, the table point from η/η′ (found from
     /// cos(θ_o − θ_i) by the half-angle identities) and φ, and R's root h = −sin(φ/2) from
     /// cos(φ/2) alone.
@@ -231,24 +251,25 @@ impl DEon2011 {
     /// Σ_p M_p N_p with N_p weighted by lobe selection: R's selection probability
     /// f / mean(Σ_p A_p) at its root from the closed-form total (no lobe-by-lobe attenuation).
     #[inline]
-    fn pair_pdf(&self, pair: &Pair) -> f64 {
-        self.pair_pdf_with(pair, pair.fresnel_r())
+    fn pair_pdf(&self, pair: &Pair<[f32; 4]>) -> f64 {
+        self.pair_pdf_with(pair, pair.taps, pair.fresnel_r())
     }
 
-    /// [`DEon2011::pair_pdf`] for R's Fresnel factor f already found.
+    /// [`DEon2011::pair_pdf`] for the taps' selection channels `selection` and R's Fresnel
+    /// factor f already found.
     #[inline]
-    fn pair_pdf_with(&self, pair: &Pair, f: f64) -> f64 {
+    fn pair_pdf_with<T>(&self, pair: &Pair<T>, selection: [f32; 4], f: f64) -> f64 {
         let c = pair.cos_half_phi;
         let h_sq = (1.0 - c * c).clamp(0.0, 1.0);
         let total = mean_total_attenuation_at_h_sq(pair.inclination, f, h_sq, self.params.mu_a);
         let sel_r = if total > 0.0 { f / total } else { 0.0 };
-        let [t1, t2, t3, rest] = pair.taps;
+        let [t1, t2, t3, rest] = selection;
         let m = pair.m;
         m[0] * (0.25 * c * sel_r)
-            + m[1] * t1.w as f64
-            + m[2] * t2.w as f64
-            + m[3] * t3.w as f64
-            + m[3] * rest.w as f64
+            + m[1] * t1 as f64
+            + m[2] * t2 as f64
+            + m[3] * t3 as f64
+            + m[3] * rest as f64
     }
 
     /// S (all lobes) and the sampling density of a pair, R's Fresnel factor found once: the
@@ -256,7 +277,11 @@ impl DEon2011 {
     #[inline]
     fn pair_eval_and_pdf(&self, pair: &Pair) -> (DVec3, f64) {
         let f = pair.fresnel_r();
-        (pair.lobes_with(f).total(), self.pair_pdf_with(pair, f))
+        let selection = pair.taps.map(|t| t.w);
+        (
+            pair.lobes_with(f).total(),
+            self.pair_pdf_with(pair, selection, f),
+        )
     }
 
     /// The tabulated sample (d'Eon et al. 2013's procedure, as [`FiberModel::sample`] states
@@ -334,7 +359,7 @@ impl FiberModel for DEon2011 {
     }
 
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
-        match self.tabulated_pair(wi, wo) {
+        match self.tabulated_selection_pair(wi, wo) {
             Some(pair) => self.pair_pdf(&pair),
             None => self.density(wi, wo, Weighting::Selection).total().x,
         }
@@ -350,23 +375,18 @@ struct Incident {
     cell: (usize, f32),
 }
 
-/// What eval and pdf share for one (ω_i, ω_o) on the tabulated path.
-struct Pair {
+/// What eval and pdf share for one (ω_i, ω_o) on the tabulated path, with the table's taps
+/// of TT, TRT, TRRT and the remainder: (r, g, b, selection) each for S, or the selection
+/// alone for the density.
+struct Pair<T = [Vec4; 4]> {
     m: [f64; 4],
-    /// TT, TRT, TRRT and the remainder: (r, g, b, selection).
-    taps: [Vec4; 4],
+    taps: T,
     inclination: Inclination,
     /// cos(φ/2): R's single root h = −sin(φ/2) has cos γ_i = cos(φ/2).
     cos_half_phi: f64,
 }
 
-impl Pair {
-    /// S per lobe: N_R = ¼ cos(φ/2) A(0, h) (d'Eon et al. 2014 §2.3), the rest from the table.
-    #[inline]
-    fn lobes(&self) -> LobeValues {
-        self.lobes_with(self.fresnel_r())
-    }
-
+impl<T> Pair<T> {
     /// A(0, h) = f at R's root, whose 3D incidence cosine is cos θ_i cos γ_i = cos θ_i cos(φ/2).
     #[inline]
     fn fresnel_r(&self) -> f64 {
@@ -374,6 +394,14 @@ impl Pair {
             self.inclination.cos_theta * self.cos_half_phi,
             self.inclination.eta,
         )
+    }
+}
+
+impl Pair {
+    /// S per lobe: N_R = ¼ cos(φ/2) A(0, h) (d'Eon et al. 2014 §2.3), the rest from the table.
+    #[inline]
+    fn lobes(&self) -> LobeValues {
+        self.lobes_with(self.fresnel_r())
     }
 
     /// [`Pair::lobes`] for R's Fresnel factor f already found.

@@ -39,6 +39,9 @@ pub struct AzimuthalTable {
     /// [θ_i][θ_d][φ] → TT, TRT and TRRT, each (r, g, b, selection): one texel holds every
     /// lobe, so a trilinear tap reads eight neighbouring cells once.
     blurred: Vec<[Vec4; 3]>,
+    /// The same texels' selection channels alone, (TT, TRT, TRRT, 0): what a sampling density
+    /// reads ([`AzimuthalTable::selection_taps`]), a quarter of the data.
+    selection: Vec<Vec4>,
     /// [θ_i] → the p ≥ 4 remainder (r, g, b, selection).
     rest: Vec<Vec4>,
 }
@@ -86,10 +89,15 @@ impl AzimuthalTable {
                 Vec4::new(a.x as f32, a.y as f32, a.z as f32, sel as f32)
             })
             .collect();
+        let selection = blurred
+            .iter()
+            .map(|[tt, trt, trrt]| Vec4::new(tt.w, trt.w, trrt.w, 0.0))
+            .collect();
         Self {
             az: az.clone(),
             phi_nodes,
             blurred,
+            selection,
             rest,
         }
     }
@@ -158,11 +166,14 @@ impl AzimuthalTable {
         phi: f64,
         weighting: Weighting,
     ) -> [DVec3; 4] {
-        let pick = |v: Vec4| match weighting {
-            Weighting::Attenuation => v.truncate().as_dvec3(),
-            Weighting::Selection => DVec3::splat(v.w as f64),
-        };
-        self.beyond_r_taps(theta_i, theta_d, phi).map(pick)
+        match weighting {
+            Weighting::Attenuation => self
+                .beyond_r_taps(theta_i, theta_d, phi)
+                .map(|v| v.truncate().as_dvec3()),
+            Weighting::Selection => self
+                .selection_taps(self.point(theta_i, self.eta_ratio(theta_d), phi))
+                .map(|w| DVec3::splat(w as f64)),
+        }
     }
 
     /// [`AzimuthalTable::eval_beyond_r`] under both weightings from one read of the texels:
@@ -239,18 +250,9 @@ impl AzimuthalTable {
     /// registers, and one bounds check per pair of neighbouring φ columns.
     #[inline(always)]
     pub fn taps(&self, at: TablePoint) -> [Vec4; 4] {
-        let p = self.phi_nodes;
-        let slab = THETA_D_NODES * p;
-        let base = at.i0 * slab + at.d0 * p + at.f0;
-        let (fi, fd, ff) = (at.fi, at.fd, at.ff);
-        let (gi, gd, gf) = (1.0 - fi, 1.0 - fd, 1.0 - ff);
+        let (base, corners, gf, ff) = self.corners(at);
         let mut acc = [Vec4::ZERO; 3];
-        for (offset, w) in [
-            (0, gi * gd),
-            (p, gi * fd),
-            (slab, fi * gd),
-            (slab + p, fi * fd),
-        ] {
+        for (offset, w) in corners {
             let [lo, hi]: &[[Vec4; 3]; 2] = self.blurred[base + offset..base + offset + 2]
                 .try_into()
                 .expect("a pair of columns");
@@ -259,8 +261,43 @@ impl AzimuthalTable {
                 acc[l] += lo[l] * wl + hi[l] * wh;
             }
         }
-        let rest = lerp4(self.rest[at.i0], self.rest[at.i0 + 1], fi);
+        let rest = lerp4(self.rest[at.i0], self.rest[at.i0 + 1], at.fi);
         [acc[0], acc[1], acc[2], rest]
+    }
+
+    /// A tap's first texel, its four (θ_i, θ_d) corners as offsets from it with their
+    /// bilinear weights, and the weights of the lower and upper φ column.
+    #[inline(always)]
+    fn corners(&self, at: TablePoint) -> (usize, [(usize, f32); 4], f32, f32) {
+        let p = self.phi_nodes;
+        let slab = THETA_D_NODES * p;
+        let (fi, fd) = (at.fi, at.fd);
+        let (gi, gd) = (1.0 - fi, 1.0 - fd);
+        let corners = [
+            (0, gi * gd),
+            (p, gi * fd),
+            (slab, fi * gd),
+            (slab + p, fi * fd),
+        ];
+        let base = at.i0 * slab + at.d0 * p + at.f0;
+        (base, corners, 1.0 - at.ff, at.ff)
+    }
+
+    /// The selection channels of [`AzimuthalTable::taps`], (TT, TRT, TRRT, the remainder),
+    /// from the selection texels alone: the same products and sums in the same order, lane by
+    /// lane, so the same bits (`selection_taps_are_the_taps_selection`).
+    #[inline(always)]
+    pub fn selection_taps(&self, at: TablePoint) -> [f32; 4] {
+        let (base, corners, gf, ff) = self.corners(at);
+        let mut acc = Vec4::ZERO;
+        for (offset, w) in corners {
+            let [lo, hi]: &[Vec4; 2] = self.selection[base + offset..base + offset + 2]
+                .try_into()
+                .expect("a pair of columns");
+            acc += *lo * Vec4::splat(w * gf) + *hi * Vec4::splat(w * ff);
+        }
+        let rest = lerp4(self.rest[at.i0], self.rest[at.i0 + 1], at.fi);
+        [acc.x, acc.y, acc.z, rest.w]
     }
 
     /// [`AzimuthalTable::taps`] by nested lerps (φ, then θ_d, then θ_i): its reference twin.
@@ -687,6 +724,26 @@ mod tests {
     /// The corner-weight taps against the nested lerps, at points between the nodes, on the
     /// nodes and at the table's far corners: within 1e-6 of the largest texel involved (f32
     /// arithmetic in another order).
+    #[test]
+    fn selection_taps_are_the_taps_selection() {
+        let az = AzimuthalScattering::new(1.55, 0.1, DVec3::new(0.2, 0.5, 1.1));
+        let table = AzimuthalTable::build(&az);
+        let mut compared = 0;
+        for k in 0..23 {
+            let theta_i = (k as f64 / 22.0 - 0.5) * 0.9999 * PI;
+            for eta_ratio in [0.0, 0.13, 0.5, 0.77, 1.0] {
+                for f in 0..41 {
+                    let phi = -PI + 2.0 * PI * f as f64 / 40.0;
+                    let at = table.point(theta_i, eta_ratio, phi);
+                    let full = table.taps(at).map(|t| t.w);
+                    assert_eq!(table.selection_taps(at), full, "θ_i {theta_i} φ {phi}");
+                    compared += 1;
+                }
+            }
+        }
+        assert_eq!(compared, 23 * 5 * 41);
+    }
+
     #[test]
     fn corner_weights_match_the_nested_lerps() {
         let az = AzimuthalScattering::new(1.55, 0.1, DVec3::new(0.2, 0.5, 1.1));

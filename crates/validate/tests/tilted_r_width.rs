@@ -193,5 +193,8 @@ fn r_follows_the_simulated_columns_where_the_offsets_graze() {
         "column means off by {worst_mean:.4} rad"
     );
     assert!(worst_width < 0.06, "column widths off by {worst_width:.3}");
-    assert!(worst_energy < 0.03, "column energies off by {worst_energy:.3}");
+    assert!(
+        worst_energy < 0.03,
+        "column energies off by {worst_energy:.3}"
+    );
 }
