@@ -70,9 +70,10 @@
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
 //! TRT's cones and widths from `lobe_table.rs` and, in the tilted model, the lobe-selection
-//! probabilities from `selection.rs`, R's mirror cone and spread from `mirror_table.rs` (β < [`rough_mirror::LEAST_BETA`]) and,
-//! for the sampler's draws, TT's and TRT's tilt shift from `shift_table.rs`; the model without
-//! tables is the reference they are measured against.
+//! probabilities from `selection.rs`, R's mirror cone and spread from `mirror_table.rs`
+//! (β < [`rough_mirror::LEAST_BETA`]) and, for the sampler's draws, TT's and TRT's tilt shift
+//! from `shift_table.rs`; the model without tables is the reference they are measured
+//! against.
 //!
 //! Erratum (both forms): d'Eon et al. 2014 §2.4 prints D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The
 //! first-order derivatives it gives in §2.2, dx_TT/dα₁,₂ = ηz′ − z, lead instead to
@@ -125,6 +126,8 @@ struct Pair {
     phi: f64,
     mirrors: [Option<MirrorOffset>; 3],
     m: [f64; 4],
+    /// S's N_R where the rough mirror gives it, read with R's lobe.
+    rough_n_r: Option<f64>,
 }
 
 /// Fixed-point iterations per sample unless set otherwise (d'Eon et al. 2014 Figure 7 uses 6).
@@ -548,7 +551,10 @@ impl NonSeparable {
     /// N_R, from its solved offsets where the scales tilt it.
     fn azimuthal_r(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> DVec3 {
         if let Some(rough) = self.rough_mirror() {
-            return DVec3::splat(rough.density(theta_i, pair.phi, weighting));
+            return DVec3::splat(match (weighting, pair.rough_n_r) {
+                (Weighting::Attenuation, Some(n_r)) => n_r,
+                _ => rough.density(theta_i, pair.phi, weighting),
+            });
         }
         let az = self.azimuthal();
         if az.scale_tilt != 0.0 {
@@ -579,12 +585,21 @@ impl NonSeparable {
         let (sin_o, cos_o) = sin_cos_quadrant(wo.theta);
         // Written out: `array::from_fn`'s closure can stay a call per lobe.
         let lobe = |p| self.cone_lobe(p, wi.theta, phi, &mirrors);
-        let m = ConeLobe::eval_four([lobe(0), lobe(1), lobe(2), lobe(3)], sin_o, cos_o);
+        // R's lobe and its N_R from one read of the rough mirror's columns.
+        let (r, rough_n_r) = match self.rough_mirror() {
+            Some(rough) => {
+                let (r, n_r) = rough.column_at(wi.theta, sin_cos_quadrant(wi.theta).0, phi);
+                (r, Some(n_r))
+            }
+            None => (lobe(0), None),
+        };
+        let m = ConeLobe::eval_four([r, lobe(1), lobe(2), lobe(3)], sin_o, cos_o);
         Pair {
             theta_d,
             phi,
             mirrors,
             m,
+            rough_n_r,
         }
     }
 

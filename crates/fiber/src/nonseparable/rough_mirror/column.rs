@@ -18,6 +18,7 @@
 //! has a narrower spread in θ_o than the offset's own (it leaves by the micro-normals of that
 //! azimuth), so a mixture of offsets' Gaussians is too wide near φ = ±π.
 
+use super::SineMoments;
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
 use crate::special::{GaussLegendre, exp_fast, sin_cos_quadrant};
@@ -43,10 +44,9 @@ pub struct RoughSurface {
 /// The light R reflects into one φ column: its energy ∫ L cos θ_o dθ_o (N_R at that φ) and
 /// the mean and variance of sin θ_o under it.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ColumnMoments {
+pub struct ReflectedColumn {
     pub energy: f64,
-    pub mean_sin: f64,
-    pub variance_sin: f64,
+    pub sine: SineMoments,
 }
 
 impl RoughSurface {
@@ -61,17 +61,10 @@ impl RoughSurface {
         }
     }
 
-    /// L(ω_o) for light at θ_i (module docs): per unit solid angle of ω_o = (θ_o, φ) and per
-    /// unit incident power on the fiber's width.
-    pub fn reflected(&self, theta_i: f64, theta_o: f64, phi: f64) -> f64 {
-        let (so, co) = theta_o.sin_cos();
-        let o = DVec3::new(so, co * phi.cos(), co * phi.sin());
-        self.reflected_into(incident(theta_i), o)
-    }
-
-    /// [`Self::reflected`] for the incident and outgoing unit vectors (fiber axis x, the
-    /// incident direction in the xy plane).
-    fn reflected_into(&self, wi: DVec3, o: DVec3) -> f64 {
+    /// L(ω_o) (module docs) for the incident and outgoing unit vectors (fiber axis x, the
+    /// incident direction in the xy plane): per unit solid angle of ω_o and per unit incident
+    /// power on the fiber's width.
+    fn reflected(&self, wi: DVec3, o: DVec3) -> f64 {
         let sum = wi + o;
         if sum.length_squared() < 1e-24 {
             return 0.0;
@@ -148,7 +141,7 @@ impl RoughSurface {
 
     /// The column at φ over θ_o ∈ [lo, hi] (which should hold all of its light): `None`
     /// where no light reaches it.
-    pub fn column(&self, theta_i: f64, phi: f64, lo: f64, hi: f64) -> Option<ColumnMoments> {
+    pub fn column(&self, theta_i: f64, phi: f64, lo: f64, hi: f64) -> Option<ReflectedColumn> {
         let rule = GaussLegendre::cached(THETA_NODES);
         let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
         let wi = incident(theta_i);
@@ -157,17 +150,19 @@ impl RoughSurface {
         for (x, w) in rule.nodes.iter().zip(&rule.weights) {
             let (s, c) = sin_cos_quadrant(mid + half * x);
             let o = DVec3::new(s, c * cp, c * sp);
-            let weight = w * half * c * self.reflected_into(wi, o);
+            let weight = w * half * c * self.reflected(wi, o);
             m0 += weight;
             m1 += weight * s;
             m2 += weight * s * s;
         }
         (m0 > 0.0).then(|| {
-            let mean_sin = m1 / m0;
-            ColumnMoments {
+            let mean = m1 / m0;
+            ReflectedColumn {
                 energy: m0,
-                mean_sin,
-                variance_sin: (m2 / m0 - mean_sin * mean_sin).max(0.0),
+                sine: SineMoments {
+                    mean,
+                    variance: (m2 / m0 - mean * mean).max(0.0),
+                },
             }
         })
     }
@@ -191,7 +186,7 @@ mod tests {
     /// offsets and 64² equal-probability slopes per offset with
     /// [`super::super::reflection_moments`]'s weights, the reflections whose azimuth falls
     /// within `half_width` of φ₀ kept.
-    fn binned(surface: &RoughSurface, theta_i: f64, phi0: f64, half_width: f64) -> ColumnMoments {
+    fn binned(surface: &RoughSurface, theta_i: f64, phi0: f64, half_width: f64) -> ReflectedColumn {
         const OFFSETS: usize = 2000;
         let slopes = unit_normal_midpoints::<64>();
         let RoughSurface {
@@ -232,11 +227,13 @@ mod tests {
                 }
             }
         }
-        let mean_sin = m1 / m0;
-        ColumnMoments {
+        let mean = m1 / m0;
+        ReflectedColumn {
             energy: m0 / (2.0 * half_width),
-            mean_sin,
-            variance_sin: m2 / m0 - mean_sin * mean_sin,
+            sine: SineMoments {
+                mean,
+                variance: m2 / m0 - mean * mean,
+            },
         }
     }
 
@@ -255,8 +252,8 @@ mod tests {
         ] {
             let surface = RoughSurface::new(f64::to_radians(alpha_deg), beta, ETA);
             let reference = binned(&surface, theta_i, phi, 0.01);
-            let sd = reference.variance_sin.sqrt();
-            let (lo, hi) = (reference.mean_sin - 8.0 * sd, reference.mean_sin + 8.0 * sd);
+            let (want, sd) = (reference.sine, reference.sine.variance.sqrt());
+            let (lo, hi) = (want.mean - 8.0 * sd, want.mean + 8.0 * sd);
             let ours = surface
                 .column(theta_i, phi, lo.max(-1.0).asin(), hi.min(1.0).asin())
                 .unwrap();
@@ -267,11 +264,11 @@ mod tests {
                 "{label}: energy"
             );
             assert!(
-                (ours.mean_sin - reference.mean_sin).abs() < 0.02 * sd,
+                (ours.sine.mean - want.mean).abs() < 0.02 * sd,
                 "{label}: mean"
             );
             assert!(
-                (ours.variance_sin / reference.variance_sin - 1.0).abs() < 0.02,
+                (ours.sine.variance / want.variance - 1.0).abs() < 0.02,
                 "{label}: variance"
             );
         }

@@ -46,7 +46,7 @@ use crate::longitudinal::ConeLobe;
 use crate::special::{asin_fast, normal_pdf_fast, normal_quantile_fast, unit_normal_midpoints};
 use crate::table::{bilinear, fill_rows, locate};
 use crate::tilted_mirror::tilted_mirror;
-use column::{ColumnMoments, RoughSurface};
+use column::{ReflectedColumn, RoughSurface};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 use std::sync::OnceLock;
@@ -322,7 +322,7 @@ fn fill_column_row(surface: &RoughSurface, i: usize, texels: &[Texel], row: &mut
             .sine
             .and_then(|guess| column_about(surface, theta_i, phi, guess));
         let lobe = match column {
-            Some(c) => ConeLobe::from_sine_moments(c.mean_sin, c.variance_sin),
+            Some(c) => ConeLobe::from_sine_moments(c.sine.mean, c.sine.variance),
             None => ConeLobe::from_sin(
                 variance_r(surface.beta, phi),
                 cone_r(theta_i, surface.alpha, phi).sin(),
@@ -345,7 +345,7 @@ fn column_about(
     theta_i: f64,
     phi: f64,
     guess: SineMoments,
-) -> Option<ColumnMoments> {
+) -> Option<ReflectedColumn> {
     let (mut mean, mut sd) = (guess.mean, guess.variance.sqrt().max(LEAST_SINE_SD));
     let mut column = None;
     for _ in 0..COLUMN_PASSES {
@@ -356,9 +356,9 @@ fn column_about(
             break;
         };
         column = Some(c);
-        let settled = c.variance_sin.sqrt().max(LEAST_SINE_SD);
-        let done = (0.7..1.3).contains(&(settled / sd)) && (c.mean_sin - mean).abs() < sd;
-        (mean, sd) = (c.mean_sin, settled);
+        let settled = c.sine.variance.sqrt().max(LEAST_SINE_SD);
+        let done = (0.7..1.3).contains(&(settled / sd)) && (c.sine.mean - mean).abs() < sd;
+        (mean, sd) = (c.sine.mean, settled);
         if done {
             break;
         }
@@ -520,6 +520,14 @@ impl RoughMirror {
     pub fn lobe(&self, theta_i: f64, sin_theta_i: f64, phi: f64) -> ConeLobe {
         let [x, v] = blend(&self.columns, COLUMN_PHI_NODES, theta_i, phi, [0, 1]);
         ConeLobe::from_sin(v, x - sin_theta_i)
+    }
+
+    /// [`RoughMirror::lobe`] and S's N_R ([`RoughMirror::density`] under A(0, h)) from one
+    /// read of the columns, for an evaluation that needs both.
+    #[inline]
+    pub fn column_at(&self, theta_i: f64, sin_theta_i: f64, phi: f64) -> (ConeLobe, f64) {
+        let [x, v, n_r] = blend(&self.columns, COLUMN_PHI_NODES, theta_i, phi, [0, 1, 2]);
+        (ConeLobe::from_sin(v, x - sin_theta_i), n_r)
     }
 
     /// R's azimuth for the sampler's offset h, whose smooth mirror leaves at `mirror_phi`:
