@@ -35,6 +35,7 @@ pub mod nusselt;
 pub mod params;
 pub mod ranges;
 pub mod rough_interface;
+pub mod sine_lobe;
 pub mod special;
 pub mod table;
 #[cfg(test)]

@@ -6,6 +6,7 @@ use crate::bravais::azimuthal_deflection;
 use crate::fresnel::fresnel_dielectric;
 use crate::nusselt::AtScale;
 use crate::nusselt::{self, Blocked, Nusselt};
+use crate::sine_lobe::{SineMoments, SkewedSine};
 use crate::special::{asin_fast, sin_cos_quadrant, unit_normal_midpoints};
 use crate::tilted_attenuation::incident;
 use std::cell::Cell;
@@ -85,7 +86,8 @@ pub fn variance_tt(beta: f64, eta: f64, theta_d: f64, h: f64) -> f64 {
     (0.5 * beta * d).powi(2)
 }
 
-/// TT's lobe in the tilted model, as the sine of its cone and its variance in θ.
+/// A von Mises–Fisher lobe as the sine of its cone and its variance in θ: TT's in the paper's
+/// form, TRT's in both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CutLobe {
     pub sin_cone: f64,
@@ -107,20 +109,19 @@ pub fn first_order_tt(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> 
 /// σ = β/√2): Var x = Σ_k ((x(α_k + σ) − x(α_k − σ))/2)² over the entry and exit scales, a
 /// two-point Gauss–Hermite rule per scale, which is ½β² Σ_k (∂x/∂α_k)² where x is linear in
 /// the tilts and stays bounded where the exit nears the critical angle and the derivative
-/// diverges. As a lobe variance by [`variance_from_sine_spread`]. Untilted and away from the
-/// pole this is [`variance_tt`] (d'Eon et al. 2014 §2.4, whose θ_o is −θ_i) to first order; a
+/// diverges: the mean and variance of the tilted model's TT lobe, which is Gaussian in the
+/// exit sine ([`crate::sine_lobe`]). Untilted and away from the pole, its variance as a lobe
+/// variance in θ ([`variance_from_sine_spread`]) is [`variance_tt`] (d'Eon et al. 2014 §2.4,
+/// whose θ_o is −θ_i) to first order; a
 /// tilt moves the refractions' angles of incidence and the exit's, and with them the spread:
 /// narrower for α < 0, wider for α > 0, as the simulation's TT is (issue 14, departure 12 of
 /// docs/validation.md).
-pub fn first_order_tt_tilted(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
+pub fn first_order_tt_tilted(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> SineMoments {
     let incident = incident(theta_i, h);
-    let (x, sine_variance) = sine_spread(alpha, beta, |tilts: [f64; 2]| {
+    let (mean, variance) = sine_spread(alpha, beta, |tilts: [f64; 2]| {
         nusselt::exit_tt(tilts, eta, incident)
     });
-    CutLobe {
-        sin_cone: x,
-        variance: variance_from_sine_spread(x, sine_variance),
-    }
+    SineMoments { mean, variance }
 }
 
 /// The exit sine x of a path through N scales tilted by α, and its spread to first order in
@@ -264,9 +265,9 @@ fn unit_tilts() -> &'static [f64; TT_TILTS] {
     TILTS.get_or_init(unit_normal_midpoints::<TT_TILTS>)
 }
 
-/// The tilted model's TT lobe at offset h: the first-order lobe through the tilted scales
-/// ([`first_order_tt_tilted`]) moved and narrowed as the rough exit cuts it at grazing
-/// incidence.
+/// The tilted model's TT lobe at offset h, as the mean and variance of its exit sine: the
+/// first-order lobe through the tilted scales ([`first_order_tt_tilted`]) moved and narrowed
+/// as the rough exit cuts it at grazing incidence.
 ///
 /// The cut: a path leaves only while its direction stays above the surface of the scale it
 /// leaves through. At grazing incidence the TT cone comes within a few standard deviations of
@@ -279,22 +280,30 @@ fn unit_tilts() -> &'static [f64; TT_TILTS] {
 /// cone and width, where a cut in the axial tilts alone at that h would move it by a
 /// standard deviation. This departs from d'Eon et al. 2014 §2.4, whose lobe is first order
 /// alone.
-pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> CutLobe {
+pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> SineMoments {
     let at_h = first_order_tt_tilted(theta_i, alpha, eta, beta, h);
-    let Some(cut) = axial_cut_last(theta_i, alpha, eta, beta) else {
+    let Some(SkewedSine { moments: cut, .. }) = axial_cut_last(theta_i, alpha, eta, beta) else {
         return at_h;
     };
     let centre = first_order_tt_tilted(theta_i, alpha, eta, beta, 0.0);
-    CutLobe {
-        sin_cone: at_h.sin_cone + (cut.sin_cone - centre.sin_cone),
+    SineMoments {
+        mean: at_h.mean + (cut.mean - centre.mean),
         variance: at_h.variance * (cut.variance / centre.variance).min(1.0),
     }
 }
 
+/// The skewness of TT's exit sine at θ_i: [`axial_cut`]'s at h = 0, which the lobe at every
+/// offset takes, as it takes the cut's shift; 0 where no path leaves. To first order the exit
+/// sine is linear in the slopes and has none; the second order and the cut give it one
+/// (docs/validation.md, departure 19).
+pub fn tt_skewness(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> f64 {
+    axial_cut_last(theta_i, alpha, eta, beta).map_or(0.0, |cut| cut.skewness)
+}
+
 /// [`axial_cut`], kept for the last arguments on each thread: the lobe table asks for a whole
 /// row of φ at one θ_i, and the cut depends on θ_i alone.
-fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
-    type Last = Option<([f64; 4], Option<CutLobe>)>;
+fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<SkewedSine> {
+    type Last = Option<([f64; 4], Option<SkewedSine>)>;
     thread_local! {
         static LAST: Cell<Last> = const { Cell::new(None) };
     }
@@ -313,14 +322,14 @@ fn axial_cut_last(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLo
 /// along the axis (standard deviation β/√2, the convention of [`variance_tt`]), on a product
 /// grid of equal-probability tilts at entry and exit, followed through the rotation sequence,
 /// weighted by both Fresnel transmissions and the cosines that make a micro-normal more or
-/// less visible, the paths the exit totally reflects left out. The mean exit sine, and the
-/// variance of the exit sine as a lobe variance ([`variance_from_sine_spread`]):
-/// [`first_order_tt_tilted`] to first order. `None` where no
-/// path leaves, and faded to first order where almost none does (`FADE`).
-pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLobe> {
+/// less visible, the paths the exit totally reflects left out. The mean, variance and
+/// skewness of the exit sine: [`first_order_tt_tilted`] to first order, with no skew. `None`
+/// where no path leaves, and faded to first order where almost none does (`FADE`). The
+/// skewness is damped where the exit cuts much (below).
+pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<SkewedSine> {
     let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, 0.0);
-    let (mut moments, mut arriving) = (SineMoments::default(), 0.0);
+    let (mut sums, mut arriving) = (SineSums::default(), 0.0);
     for &d1 in unit_tilts() {
         let Some((inward, t1)) = enter(alpha + sigma * d1, eta, incident) else {
             continue;
@@ -333,20 +342,27 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<CutLob
             let Ok((x, _)) = at.refract(eta) else {
                 continue;
             };
-            moments.add(
+            sums.add(
                 t1 * at.cos * (1.0 - fresnel_dielectric(at.cos, 1.0 / eta)),
                 x,
             );
         }
     }
-    let cut = moments.lobe()?;
+    let cut = sums.moments()?;
     // Where the exit lets out under FADE of what arrives there, the few paths left decide
     // the moments, and the last to go would leave a jump to `None`: fade to first order.
-    let fade = (moments.weight / (arriving * FADE)).min(1.0);
+    let fade = (sums.weight / (arriving * FADE)).min(1.0);
     let first = first_order_tt_tilted(theta_i, alpha, eta, beta, 0.0);
-    Some(CutLobe {
-        sin_cone: first.sin_cone + fade * (cut.sin_cone - first.sin_cone),
-        variance: first.variance + fade * (cut.variance - first.variance),
+    Some(SkewedSine {
+        moments: SineMoments {
+            mean: first.mean + fade * (cut.mean - first.mean),
+            variance: first.variance + fade * (cut.variance - first.variance),
+        },
+        // The cut's own skew, which trims the side toward the pole, is found at h = 0 on the
+        // axial slopes alone, and overshoots the simulation's where the exit cuts much (the
+        // azimuthal slopes and the other offsets blur its edge): it counts by the square of
+        // the share that leaves (departure 19).
+        skewness: fade * sums.skewness() * (sums.weight / arriving).powi(2),
     })
 }
 
@@ -366,7 +382,7 @@ pub fn trt_axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<Cu
     let tilts = TILTS.get_or_init(unit_normal_midpoints::<TRT_TILTS>);
     let sigma = beta * FRAC_1_SQRT_2;
     let incident = incident(theta_i, 0.0);
-    let mut moments = SineMoments::default();
+    let mut sums = SineSums::default();
     for &d1 in tilts {
         let Some((inward, t1)) = enter(alpha + sigma * d1, eta, incident) else {
             continue;
@@ -387,14 +403,14 @@ pub fn trt_axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<Cu
                 let Ok((x, _)) = out.refract(eta) else {
                     continue;
                 };
-                moments.add(
+                sums.add(
                     r2 * out.cos * (1.0 - fresnel_dielectric(out.cos, 1.0 / eta)),
                     x,
                 );
             }
         }
     }
-    moments.lobe()
+    sums.lobe()
 }
 
 /// A path's refraction into the fiber through a scale tilted by `tilt`: the inward direction
@@ -409,32 +425,52 @@ fn enter(tilt: f64, eta: f64, incident: Nusselt) -> Option<(Nusselt, f64)> {
     ))
 }
 
-/// The weighted moments of the exit sines of the paths a cut keeps.
+/// The weighted sums of the exit sines of the paths a cut keeps.
 #[derive(Clone, Copy, Debug, Default)]
-struct SineMoments {
+struct SineSums {
     weight: f64,
     sum: f64,
     sum_of_squares: f64,
+    sum_of_cubes: f64,
 }
 
-impl SineMoments {
+impl SineSums {
     fn add(&mut self, weight: f64, x: f64) {
         self.weight += weight;
         self.sum += weight * x;
         self.sum_of_squares += weight * x * x;
+        self.sum_of_cubes += weight * x * x * x;
     }
 
-    /// The lobe at their mean, its variance from their spread ([`variance_from_sine_spread`]);
-    /// `None` where no path left.
-    fn lobe(&self) -> Option<CutLobe> {
+    /// E[(x − μ)³] / σ³ of the exit sines; 0 where they have no spread.
+    fn skewness(&self) -> f64 {
+        let Some(SineMoments { mean, variance }) = self.moments() else {
+            return 0.0;
+        };
+        if variance <= 0.0 {
+            return 0.0;
+        }
+        let third = self.sum_of_cubes / self.weight - 3.0 * mean * variance - mean.powi(3);
+        third / variance.powf(1.5)
+    }
+
+    /// The mean and variance of the exit sines; `None` where no path left.
+    fn moments(&self) -> Option<SineMoments> {
         if self.weight <= 0.0 {
             return None;
         }
         let mean = self.sum / self.weight;
-        let spread = (self.sum_of_squares / self.weight - mean * mean).max(0.0);
+        let variance = (self.sum_of_squares / self.weight - mean * mean).max(0.0);
+        Some(SineMoments { mean, variance })
+    }
+
+    /// The von Mises–Fisher lobe at their mean, its variance from their spread
+    /// ([`variance_from_sine_spread`]); `None` where no path left.
+    fn lobe(&self) -> Option<CutLobe> {
+        let SineMoments { mean, variance } = self.moments()?;
         Some(CutLobe {
             sin_cone: mean,
-            variance: variance_from_sine_spread(mean, spread),
+            variance: variance_from_sine_spread(mean, variance),
         })
     }
 }
@@ -743,18 +779,20 @@ mod tests {
         for (theta_i, h) in [(0.3, 0.0), (-0.5, 0.3)] {
             let (lobe, x, v) = at(theta_i, h);
             assert!(
-                (lobe.sin_cone - x).abs() < 2e-3,
+                (lobe.mean - x).abs() < 2e-3,
                 "θ_i {theta_i}: {lobe:?} vs x {x}"
             );
+            let v_lobe = variance_from_sine_spread(lobe.mean, lobe.variance);
             assert!(
-                (lobe.variance / v - 1.0).abs() < 0.05,
+                (v_lobe / v - 1.0).abs() < 0.05,
                 "θ_i {theta_i}: {lobe:?} vs v {v}"
             );
         }
         let (lobe, x, v) = at(1.3, 0.0);
-        assert!(lobe.sin_cone.abs() < x.abs() - 0.005, "{lobe:?} vs x {x}");
-        assert!(lobe.variance < 0.75 * v, "{lobe:?} vs v {v}");
+        assert!(lobe.mean.abs() < x.abs() - 0.005, "{lobe:?} vs x {x}");
+        let v_lobe = variance_from_sine_spread(lobe.mean, lobe.variance);
+        assert!(v_lobe < 0.75 * v, "{lobe:?} vs v {v}");
         let (mirrored, _, _) = at(-1.3, 0.0);
-        assert!((mirrored.sin_cone + lobe.sin_cone).abs() < 1e-12);
+        assert!((mirrored.mean + lobe.mean).abs() < 1e-12);
     }
 }

@@ -7,9 +7,12 @@
 //!
 //! What is tabulated is smooth where the lobes are not: the sine x of the Nusselt exit before
 //! any clamp (the cone is asin of x clamped, or the paper's pole where |x| > 1, both of which
-//! the caller applies to the interpolated x), and the width √v times cos θ_d (v itself grows
-//! as 1 / cos²θ_d at grazing incidence).
+//! the caller applies to the interpolated x), and the width: √v times cos θ_d for a von
+//! Mises–Fisher lobe (v itself grows as 1 / cos²θ_d at grazing incidence), or the standard
+//! deviation of the exit sine for the tilted model's TT lobe, which is Gaussian in that sine
+//! ([`crate::sine_lobe`]).
 
+use crate::sine_lobe::SkewSplit;
 use crate::table::{fill_rows, locate};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -20,32 +23,57 @@ const PHI_NODES: usize = 129;
 /// The end nodes of θ_i are evaluated this far inside ±π/2.
 const GRAZING: f64 = 1e-4;
 
-/// A lobe's shape as the table holds it: the exit's sine x and √v cos θ_d.
+/// A lobe's shape as the table holds it: the exit's sine x and its width (module docs).
 pub type Shape = [f64; 2];
 
 /// The [`Shape`] of TT over (θ_i, |φ|) and of TRT over θ_i.
 #[derive(Clone, Debug)]
 pub struct LobeTable {
     tt: Vec<[f64; 2]>,
+    /// How the skewness of TT's exit sine splits its lobe, over θ_i (the tilted model's; no
+    /// split in the paper's).
+    tt_split: Vec<SkewSplit>,
     trt: Vec<[f64; 2]>,
 }
 
 impl LobeTable {
-    /// Fills the table from `shape(p, θ_i, φ)`, the exact shapes (TT's even in φ), rows of θ_i
-    /// shared among the available cores.
-    pub fn build(shape: impl Fn(usize, f64, f64) -> Shape + Sync) -> Self {
-        let mut tt = vec![[0.0; 2]; THETA_I_NODES * PHI_NODES];
-        fill_rows(&mut tt, PHI_NODES, |i, row| {
+    /// Fills the table from `tt(θ_i, φ)`, TT's shapes (even in φ), `tt_skewness(θ_i)` and
+    /// `trt(θ_i)`, rows of θ_i shared among the available cores.
+    pub fn build(
+        tt: impl Fn(f64, f64) -> Shape + Sync,
+        tt_skewness: impl Fn(f64) -> f64 + Sync,
+        trt: impl Fn(f64) -> Shape + Sync,
+    ) -> Self {
+        let mut tt_cells = vec![[0.0; 2]; THETA_I_NODES * PHI_NODES];
+        fill_rows(&mut tt_cells, PHI_NODES, |i, row| {
             let theta_i = theta_i_at(i);
             for (k, cell) in row.iter_mut().enumerate() {
-                *cell = shape(1, theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
+                *cell = tt(theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
             }
         });
-        let mut trt = vec![[0.0; 2]; THETA_I_NODES];
-        fill_rows(&mut trt, 1, |i, cell| {
-            cell[0] = shape(2, theta_i_at(i), 0.0)
+        let mut split = vec![SkewSplit::new(0.0); THETA_I_NODES];
+        fill_rows(&mut split, 1, |i, cell| {
+            cell[0] = SkewSplit::new(tt_skewness(theta_i_at(i)))
         });
-        Self { tt, trt }
+        let mut trt_cells = vec![[0.0; 2]; THETA_I_NODES];
+        fill_rows(&mut trt_cells, 1, |i, cell| cell[0] = trt(theta_i_at(i)));
+        Self {
+            tt: tt_cells,
+            tt_split: split,
+            trt: trt_cells,
+        }
+    }
+
+    /// How TT's skewness splits its lobe at θ_i, linear.
+    #[inline]
+    pub fn tt_split(&self, theta_i: f64) -> SkewSplit {
+        let (i0, fi) = theta_i_cell(theta_i);
+        let fi = fi as f64;
+        let (a, b) = (self.tt_split[i0], self.tt_split[i0 + 1]);
+        SkewSplit {
+            offset: a.offset + fi * (b.offset - a.offset),
+            part_sd: a.part_sd + fi * (b.part_sd - a.part_sd),
+        }
     }
 
     /// TT's shape at (θ_i, φ), bilinear.

@@ -52,6 +52,11 @@
 //! - TT's width is the spread of its exit through the tilted scales
 //!   ([`cones::first_order_tt_tilted`]), where §2.4's D_TT holds only for untilted ones (a
 //!   tilt moves both refractions' angles of incidence), kept bounded near the pole.
+//! - TT's longitudinal lobe lies in its exit sine ([`SkewedSineLobe`]), where M is a von
+//!   Mises–Fisher cone, Gaussian in θ_o: the exit sine is what the slopes move linearly, so
+//!   the lobe is Gaussian there to first order, and the arcsine skews θ_o toward the pole as
+//!   the simulation's TT is; the second order and the rough exit's cut skew the sine itself,
+//!   by the skewness the cut at h = 0 finds ([`cones::tt_skewness`]; departure 19).
 //! - TRT's width is the spread of its exit through the tilted scales over the offsets that
 //!   leave, weighted by A(2, h), about the cone at h = 0 ([`cones::trt_lobe_tilted`]), where
 //!   §2.5's D_TRT is an untilted fiber's at h = 0 (departure 16); then moved and narrowed as
@@ -98,6 +103,7 @@ use crate::longitudinal::{ConeLobe, LongitudinalLobe};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::nusselt;
 use crate::params::{FiberParams, ParamError};
+use crate::sine_lobe::{SineMoments, SkewedSine, SkewedSineLobe};
 use crate::special::{asin_fast, cos_quadrant, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
@@ -213,7 +219,11 @@ impl NonSeparable {
     pub fn tabulated(mut self) -> Self {
         // R's spread weighs offsets by the selection this builds.
         self.rough_mirror = OnceLock::new();
-        let lobes = LobeTable::build(|p, theta_i, phi| self.lobe_shape(p, theta_i, phi));
+        let lobes = LobeTable::build(
+            |theta_i, phi| self.tt_shape(theta_i, phi),
+            |theta_i| self.tt_skewness(theta_i),
+            |theta_i| self.lobe_shape(2, theta_i, 0.0),
+        );
         self.lobes = Some(Arc::new(lobes));
         // R's lobe is the rough mirror's where there is one.
         if self.scales == Scales::Tilted && self.params.beta < rough_mirror::LEAST_BETA {
@@ -293,6 +303,9 @@ impl NonSeparable {
     /// writes θ_d): then M is a normalised density in θ_o for every φ and the model conserves
     /// energy, where the per-direction θ_d loses up to 17 % at grazing incidence (albedo 0.83
     /// at β = 0.3, θ_i = 1.0; 0.87 at β = 0.04, θ_i = 1.4, measured with `furnace::albedo`).
+    ///
+    /// The tilted model's TT lobe lies in sin θ_o ([`SkewedSineLobe`]); here it is described by
+    /// the cone at its mean sine and the width in θ of its spread ([`cone_of_sine_lobe`]).
     pub fn longitudinal(&self, p: usize, theta_i: f64, phi: f64) -> LongitudinalLobe {
         self.longitudinal_at(p, theta_i, phi, &self.cone_mirrors(p, theta_i, phi))
     }
@@ -308,8 +321,9 @@ impl NonSeparable {
         }
     }
 
-    /// The lobe of mode p ≤ 2 as sampling draws from it: [`Self::cone_lobe`], the lobe the
-    /// evaluation reads, with R's offsets solved where the mirror table does not give its cone.
+    /// The lobe of mode p ≤ 2 as sampling draws from it, but for the tilted model's TT
+    /// ([`Self::sample_lobe_sin`]): [`Self::cone_lobe`], the lobe the evaluation reads, with R's
+    /// offsets solved where the mirror table does not give its cone.
     #[inline]
     fn sampling_lobe(&self, p: usize, theta_i: f64, phi: f64) -> ConeLobe {
         self.cone_lobe(p, theta_i, phi, &self.cone_mirrors(p, theta_i, phi))
@@ -368,6 +382,9 @@ impl NonSeparable {
         mirrors: &[Option<MirrorOffset>; 3],
     ) -> LongitudinalLobe {
         match (&self.lobes, p) {
+            (_, 1) if self.scales == Scales::Tilted => {
+                cone_of_sine_lobe(self.tt_sine_lobe(theta_i, phi))
+            }
             (Some(table), 1) => self.lobe_from_shape(theta_i, table.tt(theta_i, phi)),
             (Some(table), 2) => self.lobe_from_shape(theta_i, table.trt(theta_i)),
             _ => self.longitudinal_exact(p, theta_i, phi, mirrors),
@@ -388,7 +405,6 @@ impl NonSeparable {
         let tilted = self.scales == Scales::Tilted;
         let exit = |[x, w]: lobe_table::Shape| ConeLobe::from_sin(shape_variance(theta_i, w), x);
         match (&self.lobes, p) {
-            (Some(table), 1) if tilted => exit(table.tt(theta_i, phi)),
             (Some(table), 2) if tilted => exit(table.trt(theta_i)),
             (_, 0) => {
                 if let Some(rough) = self.rough_mirror() {
@@ -405,14 +421,41 @@ impl NonSeparable {
         }
     }
 
-    /// TT's (p = 1) or TRT's lobe shape as the lobe table holds it ([`lobe_table`]): the
-    /// Nusselt exit's sine before any clamp, at TT's offset for φ or TRT's h = 0, and √v cos θ_d.
+    /// TT's lobe shape at (θ_i, φ) as the lobe table holds it: for the tilted model, the mean
+    /// and standard deviation of the exit sine ([`Self::tt_moments`]), else
+    /// [`Self::lobe_shape`]'s.
+    fn tt_shape(&self, theta_i: f64, phi: f64) -> lobe_table::Shape {
+        match self.scales {
+            Scales::Tilted => {
+                let SineMoments { mean, variance } = self.tt_moments(theta_i, phi);
+                [mean, variance.sqrt()]
+            }
+            Scales::Paper => self.lobe_shape(1, theta_i, phi),
+        }
+    }
+
+    /// The tilted model's TT lobe at (θ_i, φ) without the table, as the mean and variance of
+    /// its exit sine: the lobe as a rough exit cuts it ([`tt_lobe_rough`]) at the offset whose
+    /// exit leaves at φ.
+    fn tt_moments(&self, theta_i: f64, phi: f64) -> SineMoments {
+        let FiberParams {
+            eta, beta, alpha, ..
+        } = self.params;
+        tt_lobe_rough(theta_i, alpha, eta, beta, self.tt_offset(theta_i, phi))
+    }
+
+    /// TRT's (p = 2) or the paper's TT lobe shape as the lobe table holds it ([`lobe_table`]):
+    /// the Nusselt exit's sine before any clamp, at TT's offset for φ or TRT's h = 0, and
+    /// √v cos θ_d.
     fn lobe_shape(&self, p: usize, theta_i: f64, phi: f64) -> lobe_table::Shape {
         let cos_d = theta_i.cos().abs();
         match p {
             1 => {
                 let h = self.tt_offset(theta_i, phi);
-                let CutLobe { sin_cone, variance } = self.tt_lobe(theta_i, h);
+                let FiberParams {
+                    eta, beta, alpha, ..
+                } = self.params;
+                let CutLobe { sin_cone, variance } = first_order_tt(theta_i, alpha, eta, beta, h);
                 [sin_cone, variance.sqrt() * cos_d]
             }
             _ => {
@@ -441,16 +484,42 @@ impl NonSeparable {
         }
     }
 
-    /// TT's lobe at offset h: the exit's sine before any clamp and the paper's variance
-    /// ([`variance_tt`]), or, through tilted scales, as a rough exit cuts it
-    /// ([`tt_lobe_rough`]).
-    fn tt_lobe(&self, theta_i: f64, h: f64) -> CutLobe {
+    /// The tilted model's TT lobe at (θ_i, φ), in its exit sine ([`SkewedSineLobe`]): the
+    /// lobe table's where there is one, else [`Self::tt_moments`], with the skewness at θ_i
+    /// ([`Self::tt_skewness`]).
+    #[inline]
+    fn tt_sine_lobe(&self, theta_i: f64, phi: f64) -> SkewedSineLobe {
+        match &self.lobes {
+            Some(table) => {
+                let [mean, sd] = table.tt(theta_i, phi);
+                SkewedSineLobe::split(mean, sd, table.tt_split(theta_i))
+            }
+            None => SkewedSineLobe::new(SkewedSine {
+                moments: self.tt_moments(theta_i, phi),
+                skewness: self.tt_skewness(theta_i),
+            }),
+        }
+    }
+
+    /// The skewness of the tilted model's TT exit sine at θ_i ([`cones::tt_skewness`]); 0 in
+    /// the paper's form.
+    fn tt_skewness(&self, theta_i: f64) -> f64 {
         let FiberParams {
             eta, beta, alpha, ..
         } = self.params;
         match self.scales {
-            Scales::Paper => first_order_tt(theta_i, alpha, eta, beta, h),
-            Scales::Tilted => tt_lobe_rough(theta_i, alpha, eta, beta, h),
+            Scales::Tilted => cones::tt_skewness(theta_i, alpha, eta, beta),
+            Scales::Paper => 0.0,
+        }
+    }
+
+    /// sin θ_o drawn from lobe p ≤ 2 at (θ_i, φ) with two uniform numbers: from the lobe
+    /// sampling reads ([`Self::sampling_lobe`]), or the tilted model's TT lobe, which takes one.
+    #[inline]
+    fn sample_lobe_sin(&self, p: usize, theta_i: f64, phi: f64, u: [f64; 2]) -> f64 {
+        match (p, self.scales) {
+            (1, Scales::Tilted) => self.tt_sine_lobe(theta_i, phi).sample_sin(u[0]),
+            _ => self.sampling_lobe(p, theta_i, phi).sample_sin(u[0], u[1]),
         }
     }
 
@@ -512,14 +581,12 @@ impl NonSeparable {
                 }
             }
             1 => {
-                let h = self.tt_offset(theta_i, phi);
                 if tilted {
-                    let lobe = self.tt_lobe(theta_i, h);
-                    LongitudinalLobe::new(lobe.variance, asin_fast(lobe.sin_cone.clamp(-1.0, 1.0)))
-                } else {
-                    let cone = cone_tt(theta_i, alpha, eta, h);
-                    LongitudinalLobe::new(variance_tt(beta, eta, theta_d, h), cone)
+                    return cone_of_sine_lobe(self.tt_sine_lobe(theta_i, phi));
                 }
+                let h = self.tt_offset(theta_i, phi);
+                let cone = cone_tt(theta_i, alpha, eta, h);
+                LongitudinalLobe::new(variance_tt(beta, eta, theta_d, h), cone)
             }
             2 => {
                 let lobe = self.trt_lobe(theta_i);
@@ -593,7 +660,16 @@ impl NonSeparable {
             }
             None => (lobe(0), None),
         };
-        let m = ConeLobe::eval_four([r, lobe(1), lobe(2), lobe(3)], sin_o, cos_o);
+        let trt = lobe(2);
+        let m = match self.scales {
+            // TT's lane holds TRT's lobe again, and TT's sine lobe replaces it.
+            Scales::Tilted => {
+                let mut m = ConeLobe::eval_four([r, trt, trt, lobe(3)], sin_o, cos_o);
+                m[1] = self.tt_sine_lobe(wi.theta, phi).eval(sin_o);
+                m
+            }
+            Scales::Paper => ConeLobe::eval_four([r, lobe(1), trt, lobe(3)], sin_o, cos_o),
+        };
         Pair {
             theta_d,
             phi,
@@ -654,10 +730,7 @@ impl NonSeparable {
         for iteration in 1..=self.iterations {
             let theta_d = 0.5 * (theta_o - wi.theta);
             phi = azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + fixed;
-            let next = asin_fast(
-                self.sampling_lobe(p, wi.theta, wrap_pi(phi))
-                    .sample_sin(u_m[0], u_m[1]),
-            );
+            let next = asin_fast(self.sample_lobe_sin(p, wi.theta, wrap_pi(phi), u_m));
             let step = (next - theta_o).abs();
             theta_o = next;
             if step < CONVERGED {
@@ -667,6 +740,17 @@ impl NonSeparable {
         }
         (theta_o, phi, self.iterations)
     }
+}
+
+/// The von Mises–Fisher lobe with a sine lobe's mean and variance of sin θ_o to first order:
+/// where [`NonSeparable::longitudinal`] describes the tilted model's TT lobe, whose shape is
+/// the [`SkewedSineLobe`], by a cone and a width in θ.
+fn cone_of_sine_lobe(lobe: SkewedSineLobe) -> LongitudinalLobe {
+    let SineMoments { mean, variance } = lobe.moments();
+    LongitudinalLobe::new(
+        cones::variance_from_sine_spread(mean, variance),
+        asin_fast(mean.clamp(-1.0, 1.0)),
+    )
 }
 
 /// v of a lobe table shape's √v cos θ_d, with θ_d = −θ_i.

@@ -43,6 +43,7 @@ use crate::azimuthal::Weighting;
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
 use crate::longitudinal::ConeLobe;
+pub use crate::sine_lobe::SineMoments;
 use crate::special::{asin_fast, normal_pdf_fast, normal_quantile_fast, unit_normal_midpoints};
 use crate::table::{bilinear, fill_rows, locate};
 use crate::tilted_mirror::tilted_mirror;
@@ -161,13 +162,6 @@ impl ReflectionMoments {
             }
         })
     }
-}
-
-/// The mean and variance of sin θ_o over some light.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SineMoments {
-    pub mean: f64,
-    pub variance: f64,
 }
 
 /// What R reflects from the surface point at angle γ (h = sin γ) for light at θ_i, scales
