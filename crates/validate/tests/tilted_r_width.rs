@@ -9,13 +9,14 @@
 //! with the model's √v_R at the column's centre, and with eq. 6's. Within the column the cone
 //! moves by under 0.007 rad, which adds under 1 % to a width of 0.015.
 
+mod common;
+
+use common::{model, model_images, simulated};
 use cuticle_fiber::tilted_mirror::{MirrorOffset, tilted_mirror_offset};
-use cuticle_fiber::{FiberParams, LatLongGrid, LatLongImage, NonSeparable};
-use cuticle_sim::{SimParams, SimResult, simulate};
-use glam::DVec3;
+use cuticle_fiber::{LatLongGrid, LatLongImage};
+use cuticle_sim::SimResult;
 use std::ops::RangeInclusive;
 
-const ETA: f64 = 1.55;
 const BETA: f64 = 0.04;
 /// About 10⁴ paths in each compared column: its standard deviation to under 1 %.
 const PATHS: u64 = 8_000_000;
@@ -39,17 +40,7 @@ fn column_spread(image: &LatLongImage, j: usize) -> f64 {
 
 /// The simulator's lobes, [`PATHS`] paths of a lossless fiber on `grid`.
 fn simulated_r(theta_i: f64, alpha: f64, beta: f64, grid: LatLongGrid, seed: u64) -> SimResult {
-    let params = SimParams {
-        theta_i,
-        alpha,
-        beta,
-        eta: ETA,
-        mu_a: [0.0; 3],
-        rays: PATHS,
-        seed,
-        grid,
-    };
-    simulate(&params, &|_, _| {}).unwrap()
+    simulated(theta_i, alpha, beta, grid, PATHS, seed)
 }
 
 /// The columns of `grid` whose |φ| lies in `band`, with their φ.
@@ -68,13 +59,7 @@ fn widths(theta_i: f64, alpha_deg: f64) -> (f64, f64) {
         height: 512,
     };
     let sim = simulated_r(theta_i, alpha, BETA, grid, 10);
-    let model = NonSeparable::new(FiberParams {
-        eta: ETA,
-        beta: BETA,
-        alpha,
-        mu_a: DVec3::ZERO,
-    })
-    .unwrap();
+    let model = model(alpha, BETA);
     let (mut worst_model, mut worst_eq6) = (0.0f64, 0.0f64);
     println!("θ_i {theta_i} α {alpha_deg}°: φ, h, width simulated / model / eq. 6");
     for (j, phi) in columns(grid, 1.2..=2.6) {
@@ -147,26 +132,13 @@ fn r_width_is_eq_6_untilted() {
 #[test]
 fn r_follows_the_simulated_columns_where_the_offsets_graze() {
     use cuticle_validate::moments::column_moments;
-    use cuticle_validate::{PixelRule, integrate_lobes};
     let (theta_i, alpha, beta) = (1.1, f64::to_radians(-4.0), 0.08);
     let grid = LatLongGrid {
         width: 64,
         height: 256,
     };
     let sim = simulated_r(theta_i, alpha, beta, grid, 11);
-    let params = FiberParams {
-        eta: ETA,
-        beta,
-        alpha,
-        mu_a: DVec3::ZERO,
-    };
-    let model = NonSeparable::new(params).unwrap().tabulated();
-    let images = integrate_lobes(
-        &model,
-        theta_i,
-        grid,
-        &PixelRule::for_fiber(ETA, alpha, beta),
-    );
+    let images = model_images(&model(alpha, beta).tabulated(), theta_i, grid);
     let (mut worst_mean, mut worst_width, mut worst_energy) = (0.0f64, 0.0f64, 0.0f64);
     println!("φ: mean θ simulated / model, width simulated / model, energy model ÷ simulated");
     for (j, phi) in columns(grid, 1.2..=2.75) {

@@ -10,15 +10,14 @@
 //! the model's lobe pixel-integrated on the same grid. A column holds 10⁵ paths or more, so
 //! its skewness carries about 0.01 of noise.
 
+mod common;
+
+use common::{model, model_images, simulated};
+use cuticle_fiber::LatLongGrid;
 use cuticle_fiber::longitudinal::LongitudinalLobe;
-use cuticle_fiber::{FiberParams, LatLongGrid, NonSeparable};
-use cuticle_sim::{SimParams, simulate};
 use cuticle_validate::moments::column_moments;
-use cuticle_validate::{PixelRule, integrate_lobes};
-use glam::DVec3;
 use std::f64::consts::FRAC_PI_2;
 
-const ETA: f64 = 1.55;
 const PATHS: u64 = 6_000_000;
 
 /// The skewness in θ_o of a von Mises–Fisher lobe, M(θ) cos θ dθ on a fine midpoint rule.
@@ -48,33 +47,9 @@ fn skew_gaps(theta_i: f64, alpha_deg: f64, beta: f64, seed: u64) -> [f64; 4] {
         width: 64,
         height: 512,
     };
-    let sim = simulate(
-        &SimParams {
-            theta_i,
-            alpha,
-            beta,
-            eta: ETA,
-            mu_a: [0.0; 3],
-            rays: PATHS,
-            seed,
-            grid,
-        },
-        &|_, _| {},
-    )
-    .unwrap();
-    let params = FiberParams {
-        eta: ETA,
-        beta,
-        alpha,
-        mu_a: DVec3::ZERO,
-    };
-    let model = NonSeparable::new(params).unwrap().tabulated();
-    let images = integrate_lobes(
-        &model,
-        theta_i,
-        grid,
-        &PixelRule::for_fiber(ETA, alpha, beta),
-    );
+    let sim = simulated(theta_i, alpha, beta, grid, PATHS, seed);
+    let model = model(alpha, beta).tabulated();
+    let images = model_images(&model, theta_i, grid);
     let mut worst = [0.0f64; 4];
     println!(
         "θ_i {theta_i} α {alpha_deg}° β {beta}: φ, skewness simulated / model / cone, \
