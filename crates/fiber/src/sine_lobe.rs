@@ -5,8 +5,8 @@
 //! x = sin θ_o is, to first order, linear in the slope of each scale the path meets: Gaussian
 //! slopes give a Gaussian x. The von Mises–Fisher lobe of [`crate::longitudinal`] with the same
 //! mean and variance of x is Gaussian in θ_o instead, symmetric about its cone; the arcsine
-//! that takes a symmetric x to θ_o skews it toward the pole, by −0.15 at θ_o = −0.75 for a
-//! spread of 0.036 rad (docs/validation.md, departure 19, has the simulated skews).
+//! that takes a symmetric x to θ_o skews it toward the pole, as the simulated TT is
+//! (docs/validation.md, departure 19, has the simulated skews).
 //!
 //! Like M, it is a density per unit sin θ_o (∫ M cos θ_o dθ_o = 1), so the truncation is its
 //! only normalisation:
