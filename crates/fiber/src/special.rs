@@ -859,17 +859,11 @@ const ERFC_FIT: [f64; 10] = [
 /// Monte Carlo noise; [`erfc`] is the full-precision one.
 #[inline]
 pub fn erfc_rel_1_2e7(x: f64) -> f64 {
-    erfc_fit(x, f64::exp)
-}
-
-/// The fit of [`erfc_rel_1_2e7`] with the exponential `exp`.
-#[inline(always)]
-fn erfc_fit(x: f64, exp: impl Fn(f64) -> f64) -> f64 {
     let z = x.abs();
     let t = 1.0 / (1.0 + 0.5 * z);
     // Horner's rule from the highest coefficient down.
     let poly = ERFC_FIT.iter().rev().fold(0.0, |acc, &c| acc * t + c);
-    let r = t * exp(-z * z + poly);
+    let r = t * (-z * z + poly).exp();
     if x >= 0.0 { r } else { 2.0 - r }
 }
 

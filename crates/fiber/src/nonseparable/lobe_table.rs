@@ -38,28 +38,27 @@ pub struct LobeTable {
 
 impl LobeTable {
     /// Fills the table from `tt(θ_i, φ)`, TT's shapes (even in φ), `tt_skewness(θ_i)` and
-    /// `trt(θ_i)`, rows of θ_i shared among the available cores.
+    /// `trt(θ_i)`, rows of θ_i shared among the available cores. A row's skewness is asked for
+    /// right after its shapes, which find the same axial cut (`cones::tt_skewness`).
     pub fn build(
         tt: impl Fn(f64, f64) -> Shape + Sync,
         tt_skewness: impl Fn(f64) -> f64 + Sync,
         trt: impl Fn(f64) -> Shape + Sync,
     ) -> Self {
-        let mut tt_cells = vec![[0.0; 2]; THETA_I_NODES * PHI_NODES];
-        fill_rows(&mut tt_cells, PHI_NODES, |i, row| {
+        let mut rows = vec![([[0.0; 2]; PHI_NODES], SkewSplit::new(0.0)); THETA_I_NODES];
+        fill_rows(&mut rows, 1, |i, row| {
             let theta_i = theta_i_at(i);
-            for (k, cell) in row.iter_mut().enumerate() {
+            let (shapes, split) = &mut row[0];
+            for (k, cell) in shapes.iter_mut().enumerate() {
                 *cell = tt(theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
             }
-        });
-        let mut split = vec![SkewSplit::new(0.0); THETA_I_NODES];
-        fill_rows(&mut split, 1, |i, cell| {
-            cell[0] = SkewSplit::new(tt_skewness(theta_i_at(i)))
+            *split = SkewSplit::new(tt_skewness(theta_i));
         });
         let mut trt_cells = vec![[0.0; 2]; THETA_I_NODES];
         fill_rows(&mut trt_cells, 1, |i, cell| cell[0] = trt(theta_i_at(i)));
         Self {
-            tt: tt_cells,
-            tt_split: split,
+            tt: rows.iter().flat_map(|(shapes, _)| *shapes).collect(),
+            tt_split: rows.iter().map(|&(_, split)| split).collect(),
             trt: trt_cells,
         }
     }
