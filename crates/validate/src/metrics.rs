@@ -36,10 +36,16 @@ impl LobeFigures {
     }
 
     /// The model's own error with the noise floor taken out in quadrature,
-    /// √max(L1² − floor², 0) ([`crate::noise`] says why and how far to trust it).
+    /// √max(L1² − floor², 0) ([`crate::noise`] says why and how far to trust it); NaN where
+    /// the L1 is (a model that returned NaN must not read as a perfect one).
     pub fn residual_l1(&self) -> Option<f64> {
         let (l1, floor) = (self.relative_l1?, self.noise_floor()?);
-        Some((l1 * l1 - floor * floor).max(0.0).sqrt())
+        let excess = l1 * l1 - floor * floor;
+        Some(if excess.is_nan() {
+            f64::NAN
+        } else {
+            excess.max(0.0).sqrt()
+        })
     }
 }
 
@@ -67,5 +73,26 @@ pub fn lobe_figures(model: &LatLongImage, sim: &LatLongImage) -> LobeFigures {
         energy_sim: channel_mean(sim.energy()),
         peak_theta_error: peak_theta_error(model, sim),
         seed_to_seed_l1: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The residual takes the floor out, clips at 0, and keeps a NaN model NaN: `f64::max`
+    /// alone returns 0 for NaN, which read as a perfect model in `validation.csv`.
+    #[test]
+    fn residual_clips_at_zero_and_keeps_nan() {
+        let figures = |l1: f64| LobeFigures {
+            relative_l1: Some(l1),
+            energy_model: 1.0,
+            energy_sim: 1.0,
+            peak_theta_error: None,
+            seed_to_seed_l1: Some(0.06),
+        };
+        assert!((figures(0.05).residual_l1().unwrap() - 0.04).abs() < 1e-12);
+        assert_eq!(figures(0.01).residual_l1(), Some(0.0));
+        assert!(figures(f64::NAN).residual_l1().unwrap().is_nan());
     }
 }
