@@ -2,8 +2,9 @@
 //! renderer or `cuticle validate` pays once per fiber before its first evaluation, for
 //! profilers and BENCHMARKS.md:
 //! `cargo run --release -p cuticle-fiber --example tabulate_nonseparable -- ALPHA_DEG BETA`
-//! (η 1.55, grey μ_a 0.25; the rough mirror of R is built on the first evaluation and timed
-//! apart).
+//! (η 1.55, grey μ_a 0.25). "model" is the constructor, which builds TT's rough azimuth
+//! (`rough_deflection::RoughTtTable`); "tables" is `tabulated()`; the rough mirror of R is
+//! built on the first evaluation and timed apart.
 use cuticle_fiber::{FiberAngles, FiberModel, FiberParams, NonSeparable};
 use glam::DVec3;
 use std::process::ExitCode;
@@ -23,6 +24,7 @@ fn main() -> ExitCode {
         alpha: alpha_deg.to_radians(),
         mu_a: DVec3::splat(0.25),
     };
+    let built = Instant::now();
     let model = match NonSeparable::new(params) {
         Ok(m) => m,
         Err(e) => {
@@ -30,6 +32,7 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
+    let construct = built.elapsed().as_secs_f64();
     let start = Instant::now();
     let model = model.tabulated();
     let tables = start.elapsed().as_secs_f64();
@@ -38,7 +41,8 @@ fn main() -> ExitCode {
     let s = model.eval(wi, wo).total().x;
     let first = start.elapsed().as_secs_f64() - tables;
     println!(
-        "α {alpha_deg}° β {beta}: tables {tables:.2} s, first evaluation {first:.2} s (S {s:.6e})"
+        "α {alpha_deg}° β {beta}: model {construct:.2} s, tables {tables:.2} s, first evaluation \
+         {first:.2} s (S {s:.6e})"
     );
     ExitCode::SUCCESS
 }

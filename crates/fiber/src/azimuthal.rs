@@ -10,6 +10,7 @@
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::fresnel::fresnel_dielectric;
 use crate::lobe::{LobeValues, channel_mean};
+use crate::rough_deflection::RoughTtTable;
 use crate::rough_interface::RoughInterface;
 use crate::special::{GaussLegendre, normal_pdf_fast};
 use crate::tilted_attenuation::{Surface, tilted_attenuation, tilted_reflectance};
@@ -111,6 +112,10 @@ pub struct AzimuthalScattering {
     /// counts as rough ([`AzimuthalScattering::with_rough_surface`]); `None` for d'Eon et al.
     /// 2011's smooth Fresnel factor.
     pub rough: Option<Arc<RoughInterface>>,
+    /// TT's azimuth offset by offset through the rough surface
+    /// ([`AzimuthalScattering::with_rough_deflection`]); `None` for d'Eon et al. 2014's smooth
+    /// Φ(1, h) and single variance.
+    pub rough_tt: Option<Arc<RoughTtTable>>,
 }
 
 impl AzimuthalScattering {
@@ -123,6 +128,7 @@ impl AzimuthalScattering {
             v_n: [0.0, 0.5 * b2, 2.0 * b2, 2.0 * b2],
             scale_tilt: 0.0,
             rough: None,
+            rough_tt: None,
         }
     }
 
@@ -143,6 +149,32 @@ impl AzimuthalScattering {
     pub fn with_rough_surface(mut self, beta: f64) -> Self {
         self.rough = Some(RoughInterface::shared(beta, self.eta));
         self
+    }
+
+    /// TT's Φ(1, h) and azimuthal spread taken per offset through the rough surface of
+    /// roughness `beta` and the scale tilt set so far ([`crate::rough_deflection`]): call
+    /// after [`AzimuthalScattering::with_scale_tilt`].
+    pub fn with_rough_deflection(mut self, beta: f64) -> Self {
+        self.rough_tt = Some(RoughTtTable::shared(self.eta, self.scale_tilt, beta));
+        self
+    }
+
+    /// Lobe p's azimuthal standard deviation about Φ(p, h): TT's per offset where it is taken
+    /// through the rough surface, else √v_{p,N}.
+    #[inline]
+    pub fn azimuthal_sigma(&self, p: usize, theta_i: f64, h: f64) -> f64 {
+        match (&self.rough_tt, p) {
+            (Some(table), 1) => table.at(theta_i, h).sigma,
+            _ => self.v_n[p].sqrt(),
+        }
+    }
+
+    /// The largest of lobe p's azimuthal standard deviations over every (θ_i, h).
+    pub fn azimuthal_sigma_max(&self, p: usize) -> f64 {
+        match (&self.rough_tt, p) {
+            (Some(table), 1) => table.sigma_max(),
+            _ => self.v_n[p].sqrt(),
+        }
     }
 
     /// The surface A(p, h) meets.
@@ -252,7 +284,6 @@ impl AzimuthalScattering {
         phi: f64,
         weighting: Weighting,
     ) -> DVec3 {
-        let v = self.v_n[p];
         let eta_p = eta_prime(self.eta, theta_d);
         let rule = GaussLegendre::cached(PANEL_NODES);
         let panels = self.panel_count(p, eta_p);
@@ -267,7 +298,9 @@ impl AzimuthalScattering {
             for (x, w) in rule.nodes.iter().zip(&rule.weights) {
                 let gamma = mid + 0.5 * width * x;
                 let h = gamma.sin();
-                let d = wrapped_gaussian(phi - self.deflection(p, theta_i, h, eta_p), v);
+                let sigma = self.azimuthal_sigma(p, theta_i, h);
+                let d =
+                    wrapped_gaussian(phi - self.deflection(p, theta_i, h, eta_p), sigma * sigma);
                 if d < 1e-300 {
                     continue;
                 }
@@ -294,10 +327,10 @@ impl AzimuthalScattering {
         width: f64,
         slope: f64,
     ) -> bool {
-        let mut reach = 0.5 * width * slope + 8.0 * self.v_n[p].sqrt();
+        let mut reach = 0.5 * width * slope + 8.0 * self.azimuthal_sigma_max(p);
         let shift = |g: f64| self.deflection_shift(p, theta_i, g.sin());
         let centre = shift(mid);
-        if self.scale_tilt != 0.0 {
+        if self.scale_tilt != 0.0 || self.rough_tt.is_some() {
             let spread = [mid - 0.5 * width, mid + 0.5 * width]
                 .map(|g| (shift(g) - centre).abs())
                 .into_iter()
@@ -315,11 +348,15 @@ impl AzimuthalScattering {
     }
 
     /// What the scale tilt adds to TT's and TRT's Φ(p, h) ([`deflection_shift`]); 0 untilted
-    /// and for the other lobes. R's tilted form solves its exact mirror instead. TRRT keeps
+    /// and for the other lobes. TT's is the rough surface's ([`crate::rough_deflection`])
+    /// where [`AzimuthalScattering::with_rough_deflection`] set it, at any tilt. R's tilted form solves its exact mirror instead. TRRT keeps
     /// Bravais' Φ: its two internal reflections off the rough surface turn it more than the
     /// tilt does, and shifting it made the validation worse in 34 of its configurations and
     /// better in 11 (docs/validation.md, departure 15).
     pub fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
+        if let (Some(table), 1) = (&self.rough_tt, p) {
+            return table.at(theta_i, h).shift;
+        }
         match p {
             1 => deflection_shift(1, theta_i, self.scale_tilt, self.eta, h, ReadAt::OwnExit),
             2 => deflection_shift(

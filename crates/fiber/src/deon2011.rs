@@ -304,7 +304,7 @@ impl DEon2011 {
         let (so, co) = sin_cos_quadrant(theta_o);
         let eta_ratio = table.eta_ratio_from_cos_2d(ci * co + si * so);
         let eta_p = self.azimuthal.eta / eta_ratio;
-        let phi = sample_phi_at(&self.azimuthal, p, h, eta_p, u_phi);
+        let phi = sample_phi_at(&self.azimuthal, p, wi.theta, h, eta_p, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
         let pair = self.pair_at(table, &inc, so, co, eta_ratio, wrap_pi(wo.phi - wi.phi));
         let (s, pdf) = self.pair_eval_and_pdf(&pair);
@@ -352,7 +352,7 @@ impl FiberModel for DEon2011 {
         let theta_o = asin_fast(self.cones.sample_sin(p.min(3), si, ci, u[2], u[3]));
         let theta_d = 0.5 * (theta_o - wi.theta);
         let shift = self.azimuthal.deflection_shift(p, wi.theta, h);
-        let phi = sample_phi(&self.azimuthal, p, h, shift, theta_d, u_phi);
+        let phi = sample_phi(&self.azimuthal, p, wi.theta, h, shift, theta_d, u_phi);
         let wo = FiberAngles::new(theta_o, wrap_pi(wi.phi + phi));
         let (s, pdf) = self.eval_and_pdf(wi, wo);
         weighted_sample(wo, s, pdf, Lobe::from_index(p), 1)
@@ -430,6 +430,7 @@ impl Pair {
 pub(crate) fn sample_phi(
     az: &AzimuthalScattering,
     p: usize,
+    theta_i: f64,
     h: f64,
     shift: f64,
     theta_d: f64,
@@ -440,16 +441,23 @@ pub(crate) fn sample_phi(
     } else {
         az.eta
     };
-    sample_phi_at(az, p, h, eta_p, u) + shift
+    sample_phi_at(az, p, theta_i, h, eta_p, u) + shift
 }
 
 /// [`sample_phi`] for η′(θ_d) already found (R and the remainder do not use it), without a
 /// tilt's shift (the tabulated path is untilted).
-fn sample_phi_at(az: &AzimuthalScattering, p: usize, h: f64, eta_p: f64, u: f64) -> f64 {
+fn sample_phi_at(
+    az: &AzimuthalScattering,
+    p: usize,
+    theta_i: f64,
+    h: f64,
+    eta_p: f64,
+    u: f64,
+) -> f64 {
     match p {
         0 => azimuthal_deflection(0, h, az.eta),
         4 => 2.0 * PI * u - PI,
-        _ => azimuthal_deflection(p as u32, h, eta_p) + azimuthal_offset(az, p, u),
+        _ => azimuthal_deflection(p as u32, h, eta_p) + azimuthal_offset(az, p, theta_i, h, u),
     }
 }
 
@@ -457,8 +465,14 @@ fn sample_phi_at(az: &AzimuthalScattering, p: usize, h: f64, eta_p: f64, u: f64)
 /// [`sample_phi`] adds to Φ(p, h), for a fixed-point sampler that draws φ at one u repeatedly
 /// and finds it once.
 #[inline]
-pub(crate) fn azimuthal_offset(az: &AzimuthalScattering, p: usize, u: f64) -> f64 {
-    az.v_n[p].sqrt() * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16))
+pub(crate) fn azimuthal_offset(
+    az: &AzimuthalScattering,
+    p: usize,
+    theta_i: f64,
+    h: f64,
+    u: f64,
+) -> f64 {
+    az.azimuthal_sigma(p, theta_i, h) * normal_quantile_fast(u.clamp(1e-16, 1.0 - 1e-16))
 }
 
 /// A sample of S (all lobes, RGB) drawn with density `pdf`: weight S / pdf; `None` where the

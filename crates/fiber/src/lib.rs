@@ -34,6 +34,7 @@ pub mod nonseparable;
 pub mod nusselt;
 pub mod params;
 pub mod ranges;
+pub mod rough_deflection;
 pub mod rough_interface;
 pub mod sine_lobe;
 pub mod special;

@@ -196,7 +196,7 @@ impl RoughInterface {
 /// micro-normal m of a surface of relative index η, and its weight (v·m) G1(v, m) G1(t, m)
 /// (1 − F) / (v.z m.z); none where m faces away, totally reflects, or sends it to the wrong
 /// side.
-fn refraction_at(v: DVec3, m: DVec3, beta: f64, eta: f64) -> Option<(DVec3, f64)> {
+pub(crate) fn refraction_at(v: DVec3, m: DVec3, beta: f64, eta: f64) -> Option<(DVec3, f64)> {
     let c = v.dot(m);
     if c <= 0.0 {
         return None;
@@ -261,7 +261,7 @@ impl AlbedoTable {
 
 /// Slopes of equal probability under the normal law of variance β²/2: the midpoints of `n`
 /// equal bins of probability.
-fn slope_quantiles(beta: f64, n: usize) -> Vec<f64> {
+pub(crate) fn slope_quantiles(beta: f64, n: usize) -> Vec<f64> {
     let sigma = beta * std::f64::consts::FRAC_1_SQRT_2;
     (0..n)
         .map(|k| sigma * normal_quantile((k as f64 + 0.5) / n as f64))

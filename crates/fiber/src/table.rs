@@ -325,12 +325,14 @@ impl AzimuthalTable {
 }
 
 /// One quadrature node of a θ_i row, shared by the blurred lobes: its offset h, and per lobe
-/// the shift of Φ by the tilt ([`AzimuthalScattering::deflection_shift`]), A(p, h) and the
-/// selection probability, each of the last two times the node's weight.
+/// the shift of Φ by the tilt ([`AzimuthalScattering::deflection_shift`]), the azimuthal
+/// standard deviation ([`AzimuthalScattering::azimuthal_sigma`]), A(p, h) and the selection
+/// probability, each of the last two times the node's weight.
 #[derive(Clone, Copy, Debug)]
 struct RowNode {
     h: f64,
     shift: [f64; 3],
+    sigma: [f64; 3],
     a: [DVec3; 3],
     sel: [f64; 3],
 }
@@ -390,6 +392,7 @@ fn row_nodes_on(
             RowNode {
                 h,
                 shift: BLURRED.map(|p| az.deflection_shift(p, theta_i, h)),
+                sigma: BLURRED.map(|p| az.azimuthal_sigma(p, theta_i, h)),
                 a: BLURRED.map(|p| a.0[p] * weight),
                 sel: BLURRED.map(|p| sel[p] * weight),
             }
@@ -443,13 +446,22 @@ fn fill_row(
 fn splat_row(az: &AzimuthalScattering, nodes: &[RowNode], phi_nodes: usize, row: &mut [[Vec4; 3]]) {
     let mut acc = vec![[0.0f64; 4]; phi_nodes];
     for (l, &p) in BLURRED.iter().enumerate() {
-        let splat = Splat::new(az.v_n[p].sqrt(), phi_nodes);
+        // One splat for the lobe, or one per node where its spread varies with the offset.
+        let fixed = Splat::new(az.v_n[p].sqrt(), phi_nodes);
+        let splats: Vec<Splat> = match az.rough_tt {
+            Some(_) if p == 1 => nodes
+                .iter()
+                .map(|n| Splat::new(n.sigma[l], phi_nodes))
+                .collect(),
+            _ => vec![],
+        };
         for d in 0..THETA_D_NODES {
             let eta_p = eta_perp_at(az.eta, d);
             acc.fill([0.0; 4]);
-            for node in nodes {
+            for (n, node) in nodes.iter().enumerate() {
                 let center = wrap_pi(azimuthal_deflection(p as u32, node.h, eta_p) + node.shift[l]);
                 let a = node.a[l];
+                let splat = splats.get(n).unwrap_or(&fixed);
                 splat.add(center, [a.x, a.y, a.z, node.sel[l]], &mut acc);
             }
             for (cell, a) in row[d * phi_nodes..(d + 1) * phi_nodes].iter_mut().zip(&acc) {

@@ -7,9 +7,10 @@
 //! across it, so the in-plane angle atan(|y| / z) of each chord and of the exit changes, by
 //! up to half a radian of Φ near the edges (docs/validation.md, departure 9;
 //! `tests/tilted_tir.rs` checks this module against an exact 3D trace). The paper's model
-//! keeps Bravais' Φ; the tilted model shifts TT's and TRT's azimuthal lobes by
-//! [`deflection_shift`] (R has its exact mirror, [`crate::tilted_mirror`]; TRRT measured worse
-//! shifted) and places TT's cone at [`tilted_tt_offset`].
+//! keeps Bravais' Φ; the tilted model shifts TRT's azimuthal lobe by [`deflection_shift`]
+//! (R has its exact mirror, [`crate::tilted_mirror`]; TRRT measured worse shifted; TT takes
+//! its shift and spread through the rough surface, [`crate::rough_deflection`], which this
+//! smooth path is the β → 0 limit of) and places TT's cone at [`tilted_tt_offset`].
 //!
 //! With γ_i the in-plane angle of the incident direction to the normal at entry, γ′_k that of
 //! chord k (the same at both of its ends, by the circle's symmetry) and γ_o that of the exit

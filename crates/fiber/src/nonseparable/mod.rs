@@ -191,6 +191,7 @@ impl NonSeparable {
             Scales::Tilted => az
                 .with_scale_tilt(params.alpha)
                 .with_rough_surface(params.beta)
+                .with_rough_deflection(params.beta)
                 .with_azimuthal_variance(2, cones::trt_azimuthal_variance(params.beta))
                 .with_azimuthal_variance(3, cones::trrt_azimuthal_variance(params.beta)),
         };
@@ -732,7 +733,8 @@ impl NonSeparable {
         let az = self.azimuthal();
         // φ = Φ(p, h; η′(θ_d)) + the tilt's shift + the Gaussian offset, as `sample_phi` draws
         // it: only Φ changes from one iteration to the next.
-        let fixed = self.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, u_phi);
+        let fixed =
+            self.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, wi.theta, h, u_phi);
         for iteration in 1..=self.iterations {
             let theta_d = 0.5 * (theta_o - wi.theta);
             phi = azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + fixed;
@@ -825,6 +827,7 @@ impl FiberModel for NonSeparable {
                     sample_phi(
                         self.azimuthal(),
                         p,
+                        wi.theta,
                         h,
                         self.azimuthal().deflection_shift(p, wi.theta, h),
                         0.5 * (theta_o - wi.theta),

@@ -1,5 +1,7 @@
 //! What the tests that hold the tilted non-separable model against the simulator share: a
 //! lossless fiber of index [`ETA`], simulated on a grid, and the model pixel-integrated on it.
+//! Not every test uses every helper.
+#![allow(dead_code)]
 
 use cuticle_fiber::{FiberParams, LatLongGrid, LatLongImage, NonSeparable};
 use cuticle_sim::{SimParams, SimResult, simulate};
