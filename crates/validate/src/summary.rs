@@ -101,6 +101,17 @@ fn counted(r: &Row, v: Option<f64>) -> Option<f64> {
     (r.figures.energy_sim >= MIN_SIM_ENERGY).then_some(v)?
 }
 
+/// The rows whose model image is not finite: its energy or its L1 is NaN or infinite (a
+/// model that returned NaN somewhere on the sphere), which no median may hide.
+pub fn non_finite(rows: &[Row]) -> Vec<&Row> {
+    rows.iter()
+        .filter(|r| {
+            !r.figures.energy_model.is_finite()
+                || r.figures.relative_l1.is_some_and(|l1| !l1.is_finite())
+        })
+        .collect()
+}
+
 /// Whether the rows carry a noise floor (the validation had two runs per configuration).
 pub fn has_noise(rows: &[Row]) -> bool {
     rows.iter().any(|r| r.figures.seed_to_seed_l1.is_some())
@@ -278,4 +289,47 @@ pub fn markdown(rows: &[Row], header: &str) -> String {
     }
     out.push_str(&crate::summary_verdict::verdicts(rows));
     out
+}
+
+#[cfg(test)]
+mod non_finite_tests {
+    use super::*;
+
+    fn row(l1: Option<f64>, energy_model: f64) -> Row {
+        Row {
+            config: "c".into(),
+            theta_i: 0.5,
+            alpha_deg: 0.0,
+            beta: 0.04,
+            eta: 1.55,
+            mu_a: 0.0,
+            model: "m",
+            lobe: "TT",
+            figures: LobeFigures {
+                relative_l1: l1,
+                energy_model,
+                energy_sim: 0.5,
+                peak_theta_error: None,
+                seed_to_seed_l1: None,
+            },
+        }
+    }
+
+    /// A NaN L1 or model energy is reported; a black simulated lobe (no L1) is not.
+    #[test]
+    fn non_finite_finds_nan_models_only() {
+        let rows = [
+            row(Some(0.05), 0.5),
+            row(Some(f64::NAN), 0.5),
+            row(None, 0.5),
+            row(Some(0.1), f64::NAN),
+            row(Some(f64::INFINITY), 0.5),
+        ];
+        let bad = non_finite(&rows);
+        assert_eq!(bad.len(), 3);
+        assert!(
+            bad.iter().all(|r| !r.figures.energy_model.is_finite()
+                || !r.figures.relative_l1.unwrap().is_finite())
+        );
+    }
 }

@@ -20,7 +20,7 @@ use cuticle_validate::moments::column_moments;
 use cuticle_validate::noise::{mean_of, seed_to_seed_l1};
 use cuticle_validate::peak::bright_columns;
 use cuticle_validate::sheet::{abs_difference, stack, total};
-use cuticle_validate::summary::mean_median;
+use cuticle_validate::summary::{mean_median, non_finite};
 use cuticle_validate::sweep_dir::FILES;
 use cuticle_validate::sweep_dir::fiber_order;
 use cuticle_validate::{ModelKind, Row, SimConfig, csv, images_of, list_configs, markdown};
@@ -151,6 +151,18 @@ pub fn run(args: Args) -> Result<()> {
     out.write("error_vs_theta_i.svg", error_plot(&rows).as_bytes())?;
     out.finish(record(&args, &configs, &rows, seconds))?;
     print_summary(&rows, configs.len(), seconds, &args);
+    let bad = non_finite(&rows);
+    if let Some(first) = bad.first() {
+        bail!(
+            "{} lobe image(s) of the models are not finite (NaN or infinite), first {} {} {}; \
+             the report in {} marks them NaN",
+            bad.len(),
+            first.config,
+            first.model,
+            first.lobe,
+            args.out.display()
+        );
+    }
     Ok(())
 }
 
