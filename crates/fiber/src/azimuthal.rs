@@ -349,7 +349,8 @@ impl AzimuthalScattering {
 
     /// What the scale tilt adds to TT's and TRT's Φ(p, h) ([`deflection_shift`]); 0 untilted
     /// and for the other lobes. TT's is the rough surface's ([`crate::rough_deflection`])
-    /// where [`AzimuthalScattering::with_rough_deflection`] set it, at any tilt. R's tilted form solves its exact mirror instead. TRRT keeps
+    /// where [`AzimuthalScattering::with_rough_deflection`] set it, at any tilt. R's tilted
+    /// form solves its exact mirror instead. TRRT keeps
     /// Bravais' Φ: its two internal reflections off the rough surface turn it more than the
     /// tilt does, and shifting it made the validation worse in 34 of its configurations and
     /// better in 11 (docs/validation.md, departure 15).

@@ -25,12 +25,11 @@ use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::nusselt::{self, AtScale, Nusselt, Tilt};
 use crate::rough_interface::{refraction_at, slope_quantiles};
 use crate::special::{asin_fast, atan2_fast};
-use crate::table::{fill_rows, locate};
+use crate::table::{SharedTables, fill_rows, locate, shared_table};
 use crate::tilted_attenuation::incident;
 use glam::DVec3;
-use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 /// Equal-probability slopes per axis at the entry and at the exit of the table's quadrature,
 /// within a few thousandths of a radian of 8 × 24 (`coarse_rule_follows_the_fine_one`).
@@ -189,17 +188,9 @@ pub struct RoughTtTable {
 impl RoughTtTable {
     /// The table for (η, α, β), built once per process and shared.
     pub fn shared(eta: f64, alpha: f64, beta: f64) -> Arc<Self> {
-        type Key = (u64, u64, u64);
-        static CACHE: OnceLock<Mutex<HashMap<Key, Arc<RoughTtTable>>>> = OnceLock::new();
-        let cache = CACHE.get_or_init(Default::default);
+        static CACHE: SharedTables<(u64, u64, u64), RoughTtTable> = OnceLock::new();
         let key = (eta.to_bits(), alpha.to_bits(), beta.to_bits());
-        if let Some(found) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-            return found.clone();
-        }
-        // Built outside the lock, so that other fibers need not wait for this one.
-        let built = Arc::new(Self::build(eta, alpha, beta));
-        let mut map = cache.lock().unwrap_or_else(|e| e.into_inner());
-        map.entry(key).or_insert(built).clone()
+        shared_table(&CACHE, key, || Self::build(eta, alpha, beta))
     }
 
     /// Every node by [`rough_tt_exit`] with [`TABLE_RULE`], the rows of θ_i shared among the

@@ -21,9 +21,9 @@
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
 use crate::special::normal_quantile;
+use crate::table::{SharedTables, shared_table};
 use glam::DVec3;
-use std::collections::HashMap;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 /// Equal-probability slopes per axis: 48² micro-normals per table entry.
 const SLOPES: usize = 48;
@@ -91,9 +91,6 @@ impl AlbedoTable {
     }
 }
 
-/// The interfaces built so far, by the bits of (β, η).
-type Shared = HashMap<(u64, u64), Arc<RoughInterface>>;
-
 /// The rough interface of a fiber of index η and Beckmann roughness β, both sides tabulated.
 #[derive(Clone, Debug)]
 pub struct RoughInterface {
@@ -126,16 +123,10 @@ impl RoughInterface {
 
     /// The interface for (β, η), built once per process and shared.
     pub fn shared(beta: f64, eta: f64) -> Arc<Self> {
-        static CACHE: OnceLock<Mutex<Shared>> = OnceLock::new();
-        let cache = CACHE.get_or_init(Default::default);
-        let key = (beta.to_bits(), eta.to_bits());
-        if let Some(found) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-            return found.clone();
-        }
-        // Built outside the lock, so that other (β, η) need not wait for this one.
-        let built = Arc::new(Self::new(beta, eta));
-        let mut map = cache.lock().unwrap_or_else(|e| e.into_inner());
-        map.entry(key).or_insert(built).clone()
+        static CACHE: SharedTables<(u64, u64), RoughInterface> = OnceLock::new();
+        shared_table(&CACHE, (beta.to_bits(), eta.to_bits()), || {
+            Self::new(beta, eta)
+        })
     }
 
     pub fn eta(&self) -> f64 {

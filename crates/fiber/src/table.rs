@@ -593,6 +593,27 @@ pub(crate) fn locate(t: f64, n: usize) -> (usize, f32) {
     (i, (x - i as f64) as f32)
 }
 
+/// A per-process cache of tables keyed by the parameters they were built for.
+pub(crate) type SharedTables<K, T> =
+    std::sync::OnceLock<std::sync::Mutex<std::collections::HashMap<K, std::sync::Arc<T>>>>;
+
+/// The table for `key` from `cache`, built by `build` the first time it is asked for. It is
+/// built outside the lock, so that other keys need not wait for this one; two threads that
+/// race for one key both build it and keep the first.
+pub(crate) fn shared_table<K: std::hash::Hash + Eq, T>(
+    cache: &SharedTables<K, T>,
+    key: K,
+    build: impl FnOnce() -> T,
+) -> std::sync::Arc<T> {
+    let cache = cache.get_or_init(Default::default);
+    if let Some(found) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+        return found.clone();
+    }
+    let built = std::sync::Arc::new(build());
+    let mut map = cache.lock().unwrap_or_else(|e| e.into_inner());
+    map.entry(key).or_insert(built).clone()
+}
+
 /// Fills a row-major grid, `fill(row index, row)` for each row of `row_len` cells, the rows
 /// shared out over every available core.
 pub(crate) fn fill_rows<T: Send>(

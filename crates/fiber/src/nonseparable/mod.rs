@@ -71,9 +71,9 @@
 //!   azimuth and its spread in φ in the mean over the rough surface's micro-normals at both
 //!   events ([`crate::rough_deflection`], at every α; departure 20): near TT's edge, where the
 //!   smooth path bends and is blocked, the light a rough surface lets through leaves smoothly
-//!   in h and spreads several times wider than d'Eon et al. 2011's β/√2. TT's cone is taken at the offset
-//!   whose exit leaves at φ through the tilted scales ([`tilted_tt_offset`]), not the one
-//!   Bravais' Φ selects (departure 14). TRRT keeps Bravais' Φ (measured worse when moved).
+//!   in h and spreads several times wider than d'Eon et al. 2011's β/√2. TT's cone is taken
+//!   at the offset whose exit leaves at φ through the tilted scales ([`tilted_tt_offset`]),
+//!   not the one Bravais' Φ selects (departure 14). TRRT keeps Bravais' Φ (measured worse when moved).
 //! - Each M still integrates to 1, so ∫ S dω is the budget of [`NonSeparable::energy_budget`]
 //!   (1 minus the losses at μ_a = 0), not 1.
 //!
