@@ -284,7 +284,7 @@ impl AzimuthalScattering {
         phi: f64,
         weighting: Weighting,
     ) -> DVec3 {
-        let eta_p = eta_prime(self.eta, theta_d);
+        let eta_p = self.lobe_eta_prime(p, theta_i, eta_prime(self.eta, theta_d));
         let rule = GaussLegendre::cached(PANEL_NODES);
         let panels = self.panel_count(p, eta_p);
         let width = PI / panels as f64;
@@ -341,10 +341,26 @@ impl AzimuthalScattering {
         crate::frame::wrap_pi(phi - bravais - centre).abs() <= reach
     }
 
-    /// Φ(p, h) that lobe p's N_p is centred on: Bravais' with η′ as d'Eon et al. 2011 take it,
-    /// plus what tilted scales add ([`Self::deflection_shift`]).
+    /// Φ(p, h) that lobe p's N_p is centred on: Bravais' with η′ as d'Eon et al. 2011 take it
+    /// (or as [`Self::lobe_eta_prime`] fixes it), plus what tilted scales add
+    /// ([`Self::deflection_shift`]).
     pub fn deflection(&self, p: usize, theta_i: f64, h: f64, eta_p: f64) -> f64 {
-        azimuthal_deflection(p as u32, h, eta_p) + self.deflection_shift(p, theta_i, h)
+        azimuthal_deflection(p as u32, h, self.lobe_eta_prime(p, theta_i, eta_p))
+            + self.deflection_shift(p, theta_i, h)
+    }
+
+    /// The η′ at which lobe p's Bravais Φ(p, h) is read, given d'Eon et al. 2011's η′(θ_d)
+    /// `eta_p`: that, except for TT taken through the rough surface
+    /// ([`Self::with_rough_deflection`]), whose Φ is read at θ_d = −θ_i whatever θ_o. Its table
+    /// holds each offset's exit azimuth itself, relative to that Φ, and TT's spread in θ with
+    /// its covariance with φ belongs to M_TT (departure 21): so N_TT is the same at every θ_d,
+    /// and ∫ M_TT N_TT integrates to A(1, h)'s energy whatever shape M_TT has.
+    #[inline]
+    pub fn lobe_eta_prime(&self, p: usize, theta_i: f64, eta_p: f64) -> f64 {
+        match (&self.rough_tt, p) {
+            (Some(_), 1) => eta_prime(self.eta, theta_i),
+            _ => eta_p,
+        }
     }
 
     /// What the scale tilt adds to TT's and TRT's Φ(p, h) ([`deflection_shift`]); 0 untilted

@@ -457,7 +457,10 @@ fn sample_phi_at(
     match p {
         0 => azimuthal_deflection(0, h, az.eta),
         4 => 2.0 * PI * u - PI,
-        _ => azimuthal_deflection(p as u32, h, eta_p) + azimuthal_offset(az, p, theta_i, h, u),
+        _ => {
+            let eta_p = az.lobe_eta_prime(p, theta_i, eta_p);
+            azimuthal_deflection(p as u32, h, eta_p) + azimuthal_offset(az, p, theta_i, h, u)
+        }
     }
 }
 

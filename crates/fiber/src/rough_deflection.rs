@@ -20,6 +20,13 @@
 //! the offset's. [`RoughTtTable`] holds them over (θ_i, γ = asin h) for one fiber, read
 //! bilinearly; the model's N_TT, its azimuthal table and its sampler all read that one table,
 //! so they agree with each other exactly.
+//!
+//! The same pairs give each offset's exit sine x = sin θ_o: its mean, its spread and its
+//! covariance with φ. TT's longitudinal lobe at a column φ is the exit sine over the light
+//! that reaches φ from every offset, each offset's x taken given φ
+//! ([`RoughTtTable::column_sine`]; departure 21): near the edge an offset's light that lands
+//! away from its Φ left at another inclination, which keeps the columns' lobes where the
+//! simulation has them though each offset's mean x drifts toward the equator there.
 
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::nusselt::{self, AtScale, Nusselt, Tilt};
@@ -51,6 +58,10 @@ pub struct RoughExit {
     pub sigma: f64,
     /// The mean exit sine sin θ_o.
     pub sin_theta: f64,
+    /// The standard deviation of the exit sine.
+    pub sin_theta_sd: f64,
+    /// The covariance of the exit sine with φ.
+    pub covariance: f64,
     /// The share of the light that reaches the exit and leaves there, unabsorbed (the
     /// quadrature's A(1, h) at μ_a = 0).
     pub transmitted: f64,
@@ -109,7 +120,7 @@ pub fn rough_tt_exit(
         matched_slopes(beta, rule.exit),
     );
     let normal = |sx: f64, sy: f64| DVec3::new(-sx, -sy, 1.0).normalize();
-    let mut sums = [0.0; 4];
+    let mut sums = [0.0; 6];
     for &ax in &entry_slopes {
         for &ay in &entry_slopes {
             let Some((into, w_in)) = refraction_at(entry.arriving(), normal(ax, ay), beta, eta)
@@ -140,11 +151,13 @@ pub fn rough_tt_exit(
                     sums[1] += w * phi;
                     sums[2] += w * phi * phi;
                     sums[3] += w * leaving.0;
+                    sums[4] += w * leaving.0 * leaving.0;
+                    sums[5] += w * leaving.0 * phi;
                 }
             }
         }
     }
-    let [w, phi, phi2, sin] = sums;
+    let [w, phi, phi2, sin, sin2, sin_phi] = sums;
     // w is a sum of non-negative weights: not positive means no light left (or NaN input).
     if w.is_nan() || w <= 0.0 {
         return None;
@@ -155,35 +168,59 @@ pub fn rough_tt_exit(
         phi: mean,
         sigma: (phi2 / w - mean * mean).max(0.0).sqrt(),
         sin_theta: sin_mean,
+        sin_theta_sd: (sin2 / w - sin_mean * sin_mean).max(0.0).sqrt(),
+        covariance: sin_phi / w - sin_mean * mean,
         transmitted: w / pairs,
     })
 }
 
 /// Nodes over θ_i ∈ [−π/2, π/2] and over γ = asin |h| ∈ [0, π/2].
-const THETA_I_NODES: usize = 97;
+const THETA_I_NODES: usize = 129;
 const GAMMA_NODES: usize = 65;
 /// The end nodes are evaluated this far inside ±π/2.
-const GRAZING: f64 = 1e-3;
+const GRAZING: f64 = 1e-4;
 
 /// What a rough surface makes of TT's azimuth at one (θ_i, h): the shift from Bravais' Φ(1, h)
-/// at the θ_d of its own mean exit (as [`crate::tilted_deflection::deflection_shift`] defines
-/// it) and the standard deviation in φ.
+/// at θ_d = −θ_i to the mean exit's φ, and the standard deviation in φ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughAzimuth {
     pub shift: f64,
     pub sigma: f64,
 }
 
-/// [`RoughAzimuth`] over (θ_i, γ = asin |h|) for one fiber (η, α, β), by [`TABLE_RULE`]: the
-/// shift is odd in h and the spread even (the fiber is symmetric about the plane of
-/// incidence), so γ runs over [0, π/2] alone.
+/// The channels of a node: the shift, σ, Φ(1, h) itself, the exit sine's mean and standard
+/// deviation, the transmitted share, and the exit sine's covariance with φ.
+const SHIFT: usize = 0;
+const SIGMA: usize = 1;
+const PHI: usize = 2;
+const SIN_MEAN: usize = 3;
+const SIN_SD: usize = 4;
+const TRANSMITTED: usize = 5;
+const COVARIANCE: usize = 6;
+type Texel = [f32; 7];
+
+/// [`rough_tt_exit`] over (θ_i, γ = asin |h|) for one fiber (η, α, β), by [`TABLE_RULE`]: the
+/// shift is odd in h, Φ is 2π less its value at −h, and the rest is even (the fiber is
+/// symmetric about the plane of incidence), so γ runs over [0, π/2] alone.
 #[derive(Clone, Debug)]
 pub struct RoughTtTable {
-    /// Per node, the shift and σ.
-    texels: Vec<[f32; 2]>,
+    texels: Vec<Texel>,
     /// The largest σ of any node: how far a lobe can reach.
     sigma_max: f64,
+    /// Per θ_i node and column of |φ|, the mean and standard deviation of the exit sine over
+    /// the light of every offset that reaches the column ([`RoughTtTable::column_sine`]).
+    columns: Vec<[f32; 2]>,
 }
+
+/// Columns over |φ| ∈ [0, π] of [`RoughTtTable::column_sine`].
+const COLUMNS: usize = 129;
+/// Steps of γ between two nodes in the mixture over the offsets.
+const SUBSTEPS: usize = 16;
+/// The least σ a node takes, as a share of the smooth surface's β/√2: where the rule's
+/// slopes let one (entry, exit) pair through, the quadrature's own σ is 0.
+const LEAST_SIGMA_SHARE: f64 = 0.25;
+/// The least standard deviation of the exit sine a column reports.
+const LEAST_SIN_SD: f64 = 1e-4;
 
 impl RoughTtTable {
     /// The table for (η, α, β), built once per process and shared.
@@ -194,53 +231,165 @@ impl RoughTtTable {
     }
 
     /// Every node by [`rough_tt_exit`] with [`TABLE_RULE`], the rows of θ_i shared among the
-    /// available cores. Where no light leaves, the node keeps Bravais' Φ and the smooth
-    /// spread β/√2 (it carries no power).
+    /// available cores, then every row's columns. Where no light leaves, the node keeps
+    /// Bravais' Φ at the specular cone and the smooth spread β/√2 (it carries no power);
+    /// elsewhere σ is at least [`LEAST_SIGMA_SHARE`] of that.
     pub fn build(eta: f64, alpha: f64, beta: f64) -> Self {
-        let fallback = [0.0, (beta * std::f64::consts::FRAC_1_SQRT_2) as f32];
-        let mut texels = vec![fallback; THETA_I_NODES * GAMMA_NODES];
+        let mut texels = vec![[0.0f32; 7]; THETA_I_NODES * GAMMA_NODES];
+        let smooth_sigma = beta * std::f64::consts::FRAC_1_SQRT_2;
         fill_rows(&mut texels, GAMMA_NODES, |i, row| {
             let theta_i = theta_i_at(i);
             for (k, texel) in row.iter_mut().enumerate() {
                 let h = gamma_at(k).sin();
-                if let Some(exit) = rough_tt_exit(theta_i, alpha, eta, beta, h, TABLE_RULE) {
-                    let theta_o = asin_fast(exit.sin_theta.clamp(-1.0, 1.0));
-                    let eta_p = eta_prime(eta, 0.5 * (theta_o - theta_i));
-                    let shift = exit.phi - azimuthal_deflection(1, h, eta_p);
-                    *texel = [shift as f32, exit.sigma as f32];
+                *texel = match rough_tt_exit(theta_i, alpha, eta, beta, h, TABLE_RULE) {
+                    Some(exit) => [
+                        exit.phi - bravais(eta, theta_i, h),
+                        exit.sigma.max(LEAST_SIGMA_SHARE * smooth_sigma),
+                        exit.phi,
+                        exit.sin_theta,
+                        exit.sin_theta_sd,
+                        exit.transmitted,
+                        exit.covariance,
+                    ],
+                    None => {
+                        let phi = bravais(eta, theta_i, h);
+                        [
+                            0.0,
+                            smooth_sigma,
+                            phi,
+                            -theta_i.sin(),
+                            smooth_sigma,
+                            0.0,
+                            0.0,
+                        ]
+                    }
                 }
+                .map(|x| x as f32);
             }
         });
-        let sigma_max = texels.iter().fold(0.0f64, |m, t| m.max(t[1] as f64));
-        Self { texels, sigma_max }
+        let sigma_max = texels.iter().fold(0.0f64, |m, t| m.max(t[SIGMA] as f64));
+        let mut table = Self {
+            texels,
+            sigma_max,
+            columns: vec![],
+        };
+        let mut columns = vec![[0.0f32; 2]; THETA_I_NODES * COLUMNS];
+        fill_rows(&mut columns, COLUMNS, |i, row| table.fill_columns(i, row));
+        table.columns = columns;
+        table
+    }
+
+    /// Row i's columns: the exit sine's moments over the light of every offset that reaches
+    /// the column, each offset weighted by its transmitted share and its Gaussian in φ there,
+    /// its exit sine taken given φ (each offset's (x, φ) a bivariate normal with the
+    /// quadrature's covariance: the light an offset sends away from its Φ leaves at another
+    /// inclination). Both signs of h; γ stepped [`SUBSTEPS`] times between nodes, the nodes'
+    /// channels linear between.
+    fn fill_columns(&self, i: usize, row: &mut [[f32; 2]]) {
+        let nodes = &self.texels[i * GAMMA_NODES..(i + 1) * GAMMA_NODES];
+        let mut steps = Vec::with_capacity(GAMMA_NODES * SUBSTEPS);
+        for k in 0..GAMMA_NODES - 1 {
+            for j in 0..SUBSTEPS {
+                let t = (j as f64 + 0.5) / SUBSTEPS as f64;
+                let lerp = |l: usize| nodes[k][l] as f64 * (1.0 - t) + nodes[k + 1][l] as f64 * t;
+                let gamma = gamma_at(k) * (1.0 - t) + gamma_at(k + 1) * t;
+                let weight = lerp(TRANSMITTED) * gamma.cos();
+                if weight > 0.0 {
+                    let sigma = lerp(SIGMA);
+                    // x given φ, a bivariate normal per offset: mean x̄ + c (φ − Φ) / σ², variance
+                    // σ_x² − c² / σ².
+                    let slope = lerp(COVARIANCE) / (sigma * sigma);
+                    let sd = lerp(SIN_SD);
+                    let conditional = (sd * sd - slope * lerp(COVARIANCE)).max(0.0);
+                    steps.push([lerp(PHI), sigma, weight, lerp(SIN_MEAN), slope, conditional]);
+                }
+            }
+        }
+        for (j, column) in row.iter_mut().enumerate() {
+            let phi = PI * j as f64 / (COLUMNS - 1) as f64;
+            let mut sums = [0.0f64; 3];
+            for &[centre, sigma, weight, mean, slope, conditional] in &steps {
+                // Offset h leaves about Φ(1, h), its mirror −h about −Φ(1, h) (where the
+                // covariance changes sign with φ − Φ's).
+                for c in [centre, -centre] {
+                    let d = crate::frame::wrap_pi(phi - c);
+                    let z = d / sigma;
+                    if z.abs() < 8.0 {
+                        let w = weight * (-0.5 * z * z).exp() / sigma;
+                        let m = mean + slope * d * c.signum();
+                        sums[0] += w;
+                        sums[1] += w * m;
+                        sums[2] += w * (conditional + m * m);
+                    }
+                }
+            }
+            let (mean, sd) = if sums[0] > 0.0 {
+                let mean = sums[1] / sums[0];
+                (mean, (sums[2] / sums[0] - mean * mean).max(0.0).sqrt())
+            } else {
+                // No offset's light reaches the column: the edge offset's lobe.
+                let edge = &nodes[GAMMA_NODES - 1];
+                (edge[SIN_MEAN] as f64, edge[SIN_SD] as f64)
+            };
+            *column = [mean as f32, sd.max(LEAST_SIN_SD) as f32];
+        }
+    }
+
+    fn row(theta_i: f64) -> (usize, f32) {
+        locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES)
+    }
+
+    /// Channel `l` at θ_i's cell (i, f_i) and γ, blended bilinearly.
+    #[inline]
+    fn blend(&self, (i, fi): (usize, f32), gamma: f64, l: usize) -> f64 {
+        let (k, fk) = locate(gamma / FRAC_PI_2, GAMMA_NODES);
+        let at = i * GAMMA_NODES + k;
+        let node = |n: usize| self.texels[n][l] as f64;
+        let (fi, fk) = (fi as f64, fk as f64);
+        let low = node(at) + fk * (node(at + 1) - node(at));
+        let high =
+            node(at + GAMMA_NODES) + fk * (node(at + GAMMA_NODES + 1) - node(at + GAMMA_NODES));
+        low + fi * (high - low)
     }
 
     /// The shift and spread at (θ_i, h), blended bilinearly in (θ_i, γ).
     #[inline]
     pub fn at(&self, theta_i: f64, h: f64) -> RoughAzimuth {
-        let (i, fi) = locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES);
+        let row = Self::row(theta_i);
         let gamma = asin_fast(h.abs().min(1.0));
-        let (k, fk) = locate(gamma / FRAC_PI_2, GAMMA_NODES);
-        let at = i * GAMMA_NODES + k;
-        let node = |n: usize, l: usize| self.texels[n][l] as f64;
-        let blend = |l: usize| {
-            let (fi, fk) = (fi as f64, fk as f64);
-            let low = node(at, l) + fk * (node(at + 1, l) - node(at, l));
-            let high = node(at + GAMMA_NODES, l)
-                + fk * (node(at + GAMMA_NODES + 1, l) - node(at + GAMMA_NODES, l));
-            low + fi * (high - low)
-        };
-        let shift = blend(0);
+        let shift = self.blend(row, gamma, SHIFT);
         RoughAzimuth {
             shift: if h < 0.0 { -shift } else { shift },
-            sigma: blend(1),
+            sigma: self.blend(row, gamma, SIGMA),
         }
+    }
+
+    /// The mean and standard deviation of the exit sine over the light leaving at azimuth φ
+    /// for light at θ_i, blended bilinearly.
+    pub fn column_sine(&self, theta_i: f64, phi: f64) -> (f64, f64) {
+        let (i, fi) = Self::row(theta_i);
+        let (k, fk) = locate(crate::frame::wrap_pi(phi).abs() / PI, COLUMNS);
+        let at = i * COLUMNS + k;
+        let (fi, fk) = (fi as f64, fk as f64);
+        let blend = |l: usize| {
+            let node = |n: usize| self.columns[n][l] as f64;
+            let low = node(at) + fk * (node(at + 1) - node(at));
+            let high = node(at + COLUMNS) + fk * (node(at + COLUMNS + 1) - node(at + COLUMNS));
+            low + fi * (high - low)
+        };
+        (blend(0), blend(1))
     }
 
     /// The largest spread of any offset.
     pub fn sigma_max(&self) -> f64 {
         self.sigma_max
     }
+}
+
+/// Bravais' Φ(1, h) at θ_d = −θ_i, from which the table's shift is measured: where N_TT reads
+/// it whatever θ_o ([`crate::azimuthal::AzimuthalScattering::lobe_eta_prime`]).
+fn bravais(eta: f64, theta_i: f64, h: f64) -> f64 {
+    azimuthal_deflection(1, h, eta_prime(eta, theta_i))
 }
 
 fn theta_i_at(i: usize) -> f64 {
@@ -298,5 +447,25 @@ mod tests {
             worst_phi < 0.005 && worst_sigma < 0.006,
             "{worst_phi} {worst_sigma}"
         );
+    }
+
+    /// Every node spreads its light: where the rule lets one (entry, exit) pair through
+    /// (here at h = ±0.999, η 1.67, α 7.7°, β 0.016 — a configuration the finiteness test
+    /// drew), the quadrature's σ is 0, and N_TT's Gaussian there would be 0/0.
+    #[test]
+    fn every_node_spreads_its_light() {
+        let (eta, alpha, beta) = (1.670571912434109, 0.13412231792810372, 0.016424339525713382);
+        let table = RoughTtTable::build(eta, alpha, beta);
+        let least = LEAST_SIGMA_SHARE * beta * std::f64::consts::FRAC_1_SQRT_2;
+        for theta_i in [-1.2, -0.5, 0.0, 0.49, 1.0] {
+            for k in 0..=2000 {
+                let h = -1.0 + k as f64 / 1000.0;
+                let at = table.at(theta_i, h);
+                assert!(
+                    at.sigma >= least * (1.0 - 1e-6) && at.shift.is_finite(),
+                    "θ_i {theta_i} h {h}: {at:?}"
+                );
+            }
+        }
     }
 }

@@ -27,6 +27,19 @@ pub struct SineMoments {
     pub variance: f64,
 }
 
+impl SineMoments {
+    /// The moments of the mixture that takes this share `weight` ∈ [0, 1] and `other` the
+    /// rest: the means blended, the variances blended plus the spread of the means.
+    pub fn mixed_with(self, other: SineMoments, weight: f64) -> SineMoments {
+        let (w, v) = (weight, 1.0 - weight);
+        let gap = self.mean - other.mean;
+        SineMoments {
+            mean: w * self.mean + v * other.mean,
+            variance: w * self.variance + v * other.variance + w * v * gap * gap,
+        }
+    }
+}
+
 /// [`SineMoments`] with the standardised third central moment of sin θ_o, E[(x − μ)³]/σ³.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkewedSine {

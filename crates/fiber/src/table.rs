@@ -438,12 +438,24 @@ fn fill_row(
     phi_nodes: usize,
     row: &mut [[Vec4; 3]],
 ) {
-    splat_row(az, &row_nodes(az, selection, theta_i), phi_nodes, row);
+    splat_row(
+        az,
+        theta_i,
+        &row_nodes(az, selection, theta_i),
+        phi_nodes,
+        row,
+    );
 }
 
 /// For each blurred lobe and θ_d, the nodes' wrapped Gaussians splatted onto the φ columns
 /// they reach.
-fn splat_row(az: &AzimuthalScattering, nodes: &[RowNode], phi_nodes: usize, row: &mut [[Vec4; 3]]) {
+fn splat_row(
+    az: &AzimuthalScattering,
+    theta_i: f64,
+    nodes: &[RowNode],
+    phi_nodes: usize,
+    row: &mut [[Vec4; 3]],
+) {
     let mut acc = vec![[0.0f64; 4]; phi_nodes];
     for (l, &p) in BLURRED.iter().enumerate() {
         // One splat for the lobe, or one per node where its spread varies with the offset.
@@ -459,6 +471,7 @@ fn splat_row(az: &AzimuthalScattering, nodes: &[RowNode], phi_nodes: usize, row:
             let eta_p = eta_perp_at(az.eta, d);
             acc.fill([0.0; 4]);
             for (n, node) in nodes.iter().enumerate() {
+                let eta_p = az.lobe_eta_prime(p, theta_i, eta_p);
                 let center = wrap_pi(azimuthal_deflection(p as u32, node.h, eta_p) + node.shift[l]);
                 let a = node.a[l];
                 let splat = splats.get(n).unwrap_or(&fixed);
@@ -886,7 +899,7 @@ mod tests {
             let nodes = row_nodes_on(&az, None, theta_i, panels, |_, h| {
                 az.attenuation(theta_i, h)
             });
-            splat_row(&az, &nodes, phi_nodes, &mut traced);
+            splat_row(&az, theta_i, &nodes, phi_nodes, &mut traced);
             for (f, t) in fast.iter().zip(&traced) {
                 for l in 0..3 {
                     let (a, b) = (f[l].x as f64, t[l].x as f64);

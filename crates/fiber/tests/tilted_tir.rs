@@ -388,11 +388,15 @@ fn trrt_azimuthal_width_is_the_exact_traces_spread() {
     }
 }
 
-/// TT's cone through tilted scales (departure 14 of docs/validation.md) sits where the exact
-/// trace's smooth exit leaves: at each offset that leaves, the model's cone at the exit's
+/// TT's cone through tilted scales (departures 14 and 21 of docs/validation.md) sits where the
+/// exact trace's smooth exit leaves: at each offset that leaves, the model's cone at the exit's
 /// azimuth is the exit's inclination (β small enough that the lobe's mean is the smooth
 /// exit's). The cone at the offset Bravais' Φ(1, h) selects for that azimuth, printed beside
-/// it, misses by up to a few hundredths of a radian.
+/// it, misses by up to a few hundredths of a radian. Since departure 21 the cone is the mean
+/// over the light that reaches the azimuth's column, tabulated over 129 columns of |φ|:
+/// measured within 1.6e-4 rad but at θ_i 0.75, α +4° (3.6e-3, at the exits next to the
+/// offsets whose smooth path is blocked) and θ_i 1.1, α −2° (8.3e-4), a tenth of the miss at
+/// Bravais' offset in each; departure 14's cone, solved per azimuth, was within 5e-5.
 #[test]
 fn tt_cone_sits_where_the_exact_traces_exit_leaves() {
     use cuticle_fiber::bravais::eta_prime;
@@ -427,8 +431,8 @@ fn tt_cone_sits_where_the_exact_traces_exit_leaves() {
         );
         assert!(compared > 100, "{compared} exits");
         assert!(
-            worst < 5e-5,
-            "θ_i {theta_i} α {alpha_deg}°: cone off by {worst}"
+            worst < 5e-3 && worst < 0.2 * bravais_worst,
+            "θ_i {theta_i} α {alpha_deg}°: cone off by {worst} (at Bravais' offset {bravais_worst})"
         );
         assert!(bravais_worst > 5e-3, "the test tells the two offsets apart");
     }

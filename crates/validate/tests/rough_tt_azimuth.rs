@@ -1,4 +1,4 @@
-//! TT's azimuthal distribution near its edge (docs/validation.md, departure 20): where the
+//! TT near its edge (docs/validation.md, departures 20 and 21): where the
 //! smooth path is blocked or grazes, the light a rough surface lets through leaves at a Φ(1, h)
 //! that keeps moving smoothly with h and spreads over several times β/√2 in φ. The tilted
 //! model's N_TT takes both per offset from `cuticle_fiber::rough_deflection`; the paper's
@@ -7,11 +7,17 @@
 //!
 //! The simulator (`cuticle-sim`, fixed seed) fills 128 columns of 0.049 rad; TT's density per
 //! unit φ in each column (∫ S cos θ dθ) is compared with N_TT read at the θ_d of the column's
-//! simulated mean θ_o, over the columns 1.3 ≤ |φ| ≤ 2.5 where the edge offsets leave.
+//! simulated mean θ_o (the rough N_TT is the same at every θ_d since departure 21), over the
+//! columns 1.3 ≤ |φ| ≤ 2.5 where the edge offsets leave.
+//!
+//! Each offset's exit sine drifts toward the equator near the edge, yet the simulated columns'
+//! mean θ_o stays put: the light an offset sends away from its Φ leaves at another
+//! inclination. The model's TT lobe per column takes that covariance (departure 21); its
+//! column means are compared with the simulation's on a finer grid in θ.
 
 mod common;
 
-use common::{ETA, simulated};
+use common::{ETA, model, model_images, simulated};
 use cuticle_fiber::LatLongGrid;
 use cuticle_fiber::azimuthal::{AzimuthalScattering, Weighting};
 use cuticle_validate::moments::column_moments;
@@ -59,24 +65,75 @@ fn edge_l1(theta_i: f64, alpha_deg: f64, beta: f64) -> [f64; 2] {
 }
 
 /// Tilted toward the tip, where the smooth path is blocked near the edge: the rough azimuth
-/// follows the simulation's edge columns (measured 0.017 and 0.024), the smooth one misses
-/// them by more than three times as much (0.057 and 0.086).
+/// follows the simulation's edge columns (measured 0.020 and 0.025), the smooth one misses
+/// them by more than two and a half times as much (0.057 and 0.086).
 #[test]
 fn tt_edge_follows_the_simulation_where_the_smooth_path_is_blocked() {
     for (theta_i, alpha_deg, beta, bound) in [(0.75, 2.0, 0.04, 0.03), (0.25, 4.0, 0.08, 0.03)] {
         let [rough, smooth] = edge_l1(theta_i, alpha_deg, beta);
         assert!(rough < bound, "θ_i {theta_i} α {alpha_deg}°: {rough}");
         assert!(
-            smooth > 3.0 * rough,
+            smooth > 2.5 * rough,
             "θ_i {theta_i} α {alpha_deg}°: {smooth} vs {rough}"
         );
     }
 }
 
 /// Tilted toward the root, where the smooth path leaves at every offset, the rough azimuth
-/// stays as close as the smooth one within the noise (measured 0.013 against 0.011).
+/// is closer than the smooth one (measured 0.008 against 0.011; 0.013 while the rough N_TT was
+/// still read at each θ_o's own θ_d, before departure 21).
 #[test]
 fn tt_edge_stays_close_where_the_smooth_path_leaves() {
     let [rough, smooth] = edge_l1(0.75, -2.0, 0.04);
-    assert!(rough < 0.02, "{rough} (smooth {smooth})");
+    assert!(rough < 0.012 && rough < smooth, "{rough} (smooth {smooth})");
+}
+
+/// The worst gap in mean θ_o (radians) between the simulated TT and the tabulated model's over
+/// the columns 1.3 ≤ |φ| ≤ 2.5 that hold at least 5 % of the brightest column's light.
+fn edge_mean_gap(theta_i: f64, alpha_deg: f64, beta: f64) -> f64 {
+    let alpha = alpha_deg.to_radians();
+    let grid = LatLongGrid {
+        width: 128,
+        height: 512,
+    };
+    let sim = simulated(theta_i, alpha, beta, grid, PATHS, 12);
+    let images = model_images(&model(alpha, beta).tabulated(), theta_i, grid);
+    let columns: Vec<_> = (0..grid.width)
+        .map(|j| {
+            (
+                column_moments(&sim.lobes[1], j),
+                column_moments(&images[1], j),
+            )
+        })
+        .collect();
+    let brightest = columns
+        .iter()
+        .filter_map(|(s, _)| s.map(|s| s.energy))
+        .fold(0.0, f64::max);
+    let mut worst = 0.0f64;
+    for (j, (s, m)) in columns.iter().enumerate() {
+        let phi = grid.phi_center(j).abs();
+        if let (Some(s), Some(m)) = (s, m)
+            && (1.3..=2.5).contains(&phi)
+            && s.energy >= 0.05 * brightest
+        {
+            worst = worst.max((s.mean - m.mean).abs());
+        }
+    }
+    println!("θ_i {theta_i} α {alpha_deg}° β {beta}: edge columns' mean θ within {worst:.4} rad");
+    worst
+}
+
+/// TT's lobe in θ at its edge columns, where each offset's own exit sine drifts toward the
+/// equator but the light an offset sends away from its Φ left at another inclination
+/// (departure 21): the model's column means follow the simulation's (measured within 0.0053
+/// and 0.0031 rad; departure 19's lobe, taken at the offset whose smooth exit leaves at φ,
+/// missed by 0.036 and 0.0043, and each bound fails it).
+#[test]
+fn tt_edge_columns_keep_the_simulated_inclination() {
+    for (theta_i, alpha_deg, beta, bound) in [(0.75, 2.0, 0.04, 0.0065), (0.25, 0.0, 0.08, 0.0038)]
+    {
+        let gap = edge_mean_gap(theta_i, alpha_deg, beta);
+        assert!(gap < bound, "θ_i {theta_i} α {alpha_deg}°: {gap}");
+    }
 }

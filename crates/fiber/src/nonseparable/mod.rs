@@ -111,7 +111,7 @@ use crate::sine_lobe::{SineMoments, SkewedSine, SkewedSineLobe};
 use crate::special::{asin_fast, cos_quadrant, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
-use crate::tilted_deflection::tilted_tt_offset;
+use crate::tilted_deflection::{tilted_exit, tilted_tt_offset};
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
     CutLobe, cone_r, cone_trt, cone_tt, cone_tt_tilted, first_order_tt, trt_exit, tt_exit,
@@ -293,12 +293,27 @@ impl NonSeparable {
         self.deon.azimuthal_scattering()
     }
 
-    /// Where the power intercepted at θ_i goes in this model: ½ ∫ A(p, h) dh per lobe and what
-    /// the scales remove, which the white furnace must find (∫ S dω = the lobes' sum, since
-    /// every M integrates to 1). The paper's form loses nothing.
+    /// Where the power intercepted at θ_i goes through the smooth mirror of each micro-normal
+    /// mean: ½ ∫ A(p, h) dh per lobe and what the scales remove. The paper's form loses
+    /// nothing. S integrates to these, except R's where the rough mirror carries it
+    /// ([`Self::lobe_energies`]).
     pub fn energy_budget(&self, theta_i: f64) -> TiltedAttenuation {
         let az = self.azimuthal();
         energy_budget(theta_i, az.surface(), az.mu_a)
+    }
+
+    /// What each lobe of S integrates to at θ_i, ∫ S_p dω_o (every M integrates to 1, and
+    /// N_TT is the same at every θ_d): the budget's ½ ∫ A(p, h) dh ([`Self::energy_budget`]),
+    /// but R's off the rough surface where the rough mirror carries it
+    /// ([`RoughMirror::energy`]), which sends out part of the light that the smooth mirror's
+    /// budget loses below the macro surface, as the simulator's surface does. The white
+    /// furnace finds these.
+    pub fn lobe_energies(&self, theta_i: f64) -> LobeValues {
+        let mut lobes = self.energy_budget(theta_i).lobes;
+        if let Some(rough) = self.rough_mirror() {
+            lobes.0[0] = DVec3::splat(rough.energy(theta_i));
+        }
+        lobes
     }
 
     /// The longitudinal lobe of mode p for light at θ_i leaving at azimuth φ.
@@ -439,14 +454,36 @@ impl NonSeparable {
         }
     }
 
-    /// The tilted model's TT lobe at (θ_i, φ) without the table, as the mean and variance of
-    /// its exit sine: the lobe as a rough exit cuts it ([`tt_lobe_rough`]) at the offset whose
-    /// exit leaves at φ.
+    /// The tilted model's TT lobe at (θ_i, φ) without the lobe table, as the mean and variance
+    /// of its exit sine: over the light of every offset that reaches φ through the rough
+    /// surface ([`crate::rough_deflection::RoughTtTable::column_sine`]), or, where the smooth
+    /// path at h = 0 is blocked, the lobe as a rough exit cuts it ([`tt_lobe_rough`]) at the
+    /// offset whose exit leaves at φ.
     fn tt_moments(&self, theta_i: f64, phi: f64) -> SineMoments {
         let FiberParams {
             eta, beta, alpha, ..
         } = self.params;
-        tt_lobe_rough(theta_i, alpha, eta, beta, self.tt_offset(theta_i, phi))
+        let cut = || tt_lobe_rough(theta_i, alpha, eta, beta, self.tt_offset(theta_i, phi));
+        // The light that reaches φ, through the rough surface (departure 21), where the smooth
+        // path at h = 0 leaves: where it does not, the light that leaves comes from the tails
+        // of the slopes, which the quadrature's rule does not reach. Between the two, over
+        // OPEN_BAND of θ_i, the mixture of both lobes, so that the model is continuous in θ_i.
+        let Some(table) = &self.azimuthal().rough_tt else {
+            return cut();
+        };
+        let open = open_share(theta_i, alpha, eta);
+        if open <= 0.0 {
+            return cut();
+        }
+        let (mean, sd) = table.column_sine(theta_i, phi);
+        let column = SineMoments {
+            mean,
+            variance: sd * sd,
+        };
+        if open >= 1.0 {
+            return column;
+        }
+        column.mixed_with(cut(), open)
     }
 
     /// TRT's (p = 2) or the paper's TT lobe shape as the lobe table holds it ([`lobe_table`]):
@@ -723,7 +760,10 @@ impl NonSeparable {
     }
 
     /// θ_o and φ for TT or TRT by the fixed-point iteration of §3: guess θ_o = −θ_i, then
-    /// alternately sample φ given θ_d and θ_o given φ with the same random numbers.
+    /// alternately sample φ given θ_d and θ_o given φ with the same random numbers. Where TT's
+    /// N does not depend on θ_d ([`AzimuthalScattering::lobe_eta_prime`], departure 21) φ is
+    /// drawn once and θ_o from M_TT given it: a direct draw of S_TT = N_TT(φ) M_TT(θ_o | φ), no
+    /// fixed point to find.
     fn sample_fixed_point(
         &self,
         wi: FiberAngles,
@@ -739,9 +779,16 @@ impl NonSeparable {
         // it: only Φ changes from one iteration to the next.
         let fixed =
             self.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, wi.theta, h, u_phi);
+        if p == 1 && az.rough_tt.is_some() {
+            let eta_p = az.lobe_eta_prime(p, wi.theta, az.eta);
+            let phi = azimuthal_deflection(1, h, eta_p) + fixed;
+            let theta_o = asin_fast(self.sample_lobe_sin(p, wi.theta, wrap_pi(phi), u_m));
+            return (theta_o, phi, 1);
+        }
         for iteration in 1..=self.iterations {
             let theta_d = 0.5 * (theta_o - wi.theta);
-            phi = azimuthal_deflection(p as u32, h, eta_prime(az.eta, theta_d)) + fixed;
+            let eta_p = az.lobe_eta_prime(p, wi.theta, eta_prime(az.eta, theta_d));
+            phi = azimuthal_deflection(p as u32, h, eta_p) + fixed;
             let next = asin_fast(self.sample_lobe_sin(p, wi.theta, wrap_pi(phi), u_m));
             let step = (next - theta_o).abs();
             theta_o = next;
@@ -752,6 +799,51 @@ impl NonSeparable {
         }
         (theta_o, phi, self.iterations)
     }
+}
+
+/// The width in θ_i of the band over which TT's lobe passes from the rough surface's columns to
+/// the cut lobe where the smooth path at h = 0 becomes blocked.
+const OPEN_BAND: f64 = 0.08;
+/// Bisection steps of [`open_share`]: the edge to 1e-10 rad.
+const OPEN_BISECTIONS: usize = 30;
+
+/// The share of θ_i ± [`OPEN_BAND`]/2 where TT's smooth path at h = 0 leaves: 1 well inside
+/// the open inclinations, 0 well inside the blocked ones, linear across the edge between them
+/// (found by bisection; the band is taken to hold one edge at most). Kept for the last
+/// arguments on each thread (the lobe table asks along a row of one θ_i).
+fn open_share(theta_i: f64, alpha: f64, eta: f64) -> f64 {
+    type Last = Option<([f64; 3], f64)>;
+    thread_local! {
+        static LAST: std::cell::Cell<Last> = const { std::cell::Cell::new(None) };
+    }
+    let key = [theta_i, alpha, eta];
+    LAST.with(|last| match last.get() {
+        Some((k, share)) if k == key => share,
+        _ => {
+            let edge = std::f64::consts::FRAC_PI_2 - 1e-9;
+            let open = |t: f64| tilted_exit(1, t.clamp(-edge, edge), alpha, eta, 0.0).is_some();
+            let (lo, hi) = (theta_i - 0.5 * OPEN_BAND, theta_i + 0.5 * OPEN_BAND);
+            let share = match (open(lo), open(hi)) {
+                (true, true) => 1.0,
+                (false, false) => 0.0,
+                (lo_open, _) => {
+                    let (mut a, mut b) = (lo, hi);
+                    for _ in 0..OPEN_BISECTIONS {
+                        let mid = 0.5 * (a + b);
+                        if open(mid) == lo_open {
+                            a = mid;
+                        } else {
+                            b = mid;
+                        }
+                    }
+                    let cut = (0.5 * (a + b) - lo) / OPEN_BAND;
+                    if lo_open { cut } else { 1.0 - cut }
+                }
+            };
+            last.set(Some((key, share)));
+            share
+        }
+    })
 }
 
 /// The von Mises–Fisher lobe with a sine lobe's mean and variance of sin θ_o to first order:
@@ -870,10 +962,11 @@ mod tests {
     /// rotations near grazing exits) and 2.5e-3 rad (TRT), 7e-6 rad on average; widths within
     /// 2.3e-3 (the paper's TT) and 1e-6 (TRT). The tilted TT lobe, Gaussian in its exit sine
     /// (departure 19), is compared as the cone of the same moments ([`cone_of_sine_lobe`])
-    /// against its exact twin ([`NonSeparable::tt_sine_lobe_exact`], no table read): its
-    /// cone within 6.2e-3 rad; its width (departure 12) has kinks where its exit nears the
-    /// critical angle and the half-differences of its spread reach the clamp: within 2.6e-2
-    /// there, 2.5e-4 on average. The tilted TRT lobe averages over
+    /// against its exact twin ([`NonSeparable::tt_sine_lobe_exact`], no lobe-table read): its
+    /// cone within 6.2e-3 rad, 2.6e-5 on average; its width within 5.5e-2, 3.2e-4 on average,
+    /// the worst near grazing incidence and where departure 21's lobe passes to the cut one
+    /// over `OPEN_BAND` (departure 12's kinks, where its exit nears the critical angle, are
+    /// still there too). The tilted TRT lobe averages over
     /// the offsets whose smooth path leaves, which start and stop leaving at kinks in θ_i
     /// (departure 16), and is cut by the paths that leave at h = 0 on a grid of tilts
     /// (departure 17), whose share narrows it up to a kink: its cone within 1.8e-3 rad
@@ -933,8 +1026,8 @@ mod tests {
                 width_mean[1]
             );
             assert!(worst[0] < 0.01 && worst[1] < 4e-3, "{worst:?}");
-            assert!(mean[0] < 2e-5 && mean[1] < 5e-5, "{mean:?}");
-            assert!(width[0] < 0.05 && width[1] < 0.05, "{width:?}");
+            assert!(mean[0] < 4e-5 && mean[1] < 5e-5, "{mean:?}");
+            assert!(width[0] < 0.08 && width[1] < 0.05, "{width:?}");
             assert!(
                 width_mean[0] < 5e-4 && width_mean[1] < 5e-4,
                 "{width_mean:?}"

@@ -71,6 +71,8 @@ const GRAZING: f64 = 1e-4;
 const SLOPES: usize = 16;
 /// Standard deviations of a spread within which [`RoughMirror::build`] adds its Gaussian.
 const REACH: f64 = 7.0;
+/// Steps in γ of [`RoughMirror::energy`]'s rule: eight per node interval.
+const ENERGY_STEPS: usize = 8 * (GAMMA_NODES - 1);
 
 /// t taken modulo 1: t itself for the wrapped azimuths the model passes (t ∈ [0, 1)), without
 /// the library's `fmod` there.
@@ -483,6 +485,20 @@ impl RoughMirror {
             sd: lerp(2),
         };
         (spread, lerp(3))
+    }
+
+    /// R's energy at θ_i, ½ ∫ A(0, h) dh with step 1's albedo (bilinear in its table), by the
+    /// midpoint rule in γ on [`ENERGY_STEPS`] steps: what S's N_R integrates to over φ.
+    pub fn energy(&self, theta_i: f64) -> f64 {
+        let d_gamma = PI / ENERGY_STEPS as f64;
+        (0..ENERGY_STEPS)
+            .map(|k| {
+                let gamma = -FRAC_PI_2 + (k as f64 + 0.5) * d_gamma;
+                self.spread(theta_i, gamma).albedo * gamma.cos()
+            })
+            .sum::<f64>()
+            * 0.5
+            * d_gamma
     }
 
     /// (A, μ, s) at (θ_i, γ), bilinear.
