@@ -74,8 +74,15 @@ fn in_plane_signed((x, y): Nusselt, sign: f64) -> f64 {
 }
 
 /// The signs that make the chord's and the exit's in-plane angles positive on the smooth path
-/// at a small offset of sign s: the convention in which Φ = π + s (2γ′ − γ_i − γ_o).
-fn in_plane_signs(tilt: Tilt, theta_i: f64, eta: f64, s: f64) -> Option<(f64, f64)> {
+/// at a small offset of sign s: the convention in which Φ = π + s (2γ′ − γ_i − γ_o). Where
+/// that smooth path is blocked, (−s, −s): the signs it has wherever it leaves
+/// (`in_plane_signs_are_one_convention`), and the rough surface still lets light out there.
+fn in_plane_signs(tilt: Tilt, theta_i: f64, eta: f64, s: f64) -> (f64, f64) {
+    smooth_in_plane_signs(tilt, theta_i, eta, s).unwrap_or((-s, -s))
+}
+
+/// [`in_plane_signs`] from the smooth path itself; `None` where it is blocked.
+fn smooth_in_plane_signs(tilt: Tilt, theta_i: f64, eta: f64, s: f64) -> Option<(f64, f64)> {
     let entry = AtScale::outside(tilt, incident(theta_i, 0.25 * s)).ok()?;
     let chord = entry.refract(eta).ok()?;
     let exit = AtScale::inside(tilt, nusselt::propagate(chord))
@@ -111,7 +118,7 @@ pub fn rough_tt_exit(
 ) -> Option<RoughExit> {
     let tilt = Tilt::new(alpha);
     let s = if h < 0.0 { -1.0 } else { 1.0 };
-    let (chord_sign, exit_sign) = in_plane_signs(tilt, theta_i, eta, s)?;
+    let (chord_sign, exit_sign) = in_plane_signs(tilt, theta_i, eta, s);
     let d = incident(theta_i, h);
     let gamma_i = in_plane_signed(d, s);
     let entry = AtScale::outside(tilt, d).ok()?;
@@ -467,5 +474,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The sign convention of the in-plane angles is one and the same wherever the smooth path
+    /// at a small offset leaves, so the quadrature keeps it where that path is blocked.
+    #[test]
+    fn in_plane_signs_are_one_convention() {
+        let (mut open, mut blocked) = (0, 0);
+        for eta in [1.2, 1.55, 2.0] {
+            for i in 0..60 {
+                for alpha_deg in -10..=10 {
+                    let theta_i = -1.5 + 3.0 * i as f64 / 59.0;
+                    let tilt = Tilt::new((alpha_deg as f64).to_radians());
+                    for s in [-1.0, 1.0] {
+                        match smooth_in_plane_signs(tilt, theta_i, eta, s) {
+                            Some(signs) => {
+                                assert_eq!(signs, (-s, -s), "η {eta} θ_i {theta_i} α {alpha_deg}°");
+                                open += 1;
+                            }
+                            None => blocked += 1,
+                        }
+                    }
+                }
+            }
+        }
+        assert!(open > 1000 && blocked > 100, "{open} {blocked}");
+    }
+
+    /// Where the smooth path at small offsets is blocked (θ_i 1.1, α +4°), the rough surface
+    /// still lets TT out, at an azimuth and spread the quadrature finds.
+    #[test]
+    fn light_leaves_where_the_smooth_path_is_blocked() {
+        let (theta_i, alpha) = (1.1, 4f64.to_radians());
+        assert!(tilted_exit(1, theta_i, alpha, 1.55, 0.25).is_none());
+        let exit = rough_tt_exit(theta_i, alpha, 1.55, 0.04, 0.25, TABLE_RULE).expect("it leaves");
+        assert!(exit.transmitted > 0.0 && exit.sigma > 0.0, "{exit:?}");
     }
 }
