@@ -299,11 +299,17 @@ fn blend<const K: usize, const N: usize>(
     let j0 = (x as usize).min(phi_nodes - 1);
     let fj = (x - j0 as f64) as f32;
     let j1 = (j0 + 1) % phi_nodes;
-    c.map(|c| {
-        let tap = |i: usize, j: usize| table[i * phi_nodes + j][c];
-        let row = |i: usize| tap(i, j0) + fj * (tap(i, j1) - tap(i, j0));
-        (row(i0) + fi * (row(i0 + 1) - row(i0))) as f64
-    })
+    // The four texels once, then each channel: a loop, not `c.map`, whose closure the
+    // compiler left as a call per channel.
+    let (low, high) = (i0 * phi_nodes, (i0 + 1) * phi_nodes);
+    let [a, b, d, e] = [low + j0, low + j1, high + j0, high + j1].map(|at| &table[at]);
+    let mut out = [0.0; N];
+    for (o, &k) in out.iter_mut().zip(&c) {
+        let row_low = a[k] + fj * (b[k] - a[k]);
+        let row_high = d[k] + fj * (e[k] - d[k]);
+        *o = (row_low + fi * (row_high - row_low)) as f64;
+    }
+    out
 }
 
 /// Row i of R's columns (step 3): at every fourth φ node, the column's energy and moments of
