@@ -240,7 +240,7 @@ impl RoughTtTable {
     /// Every node by [`rough_tt_exit`] with [`TABLE_RULE`], the rows of θ_i shared among the
     /// available cores, then every row's columns. Where no light leaves, the node keeps
     /// Bravais' Φ at the specular cone and the smooth spread β/√2 (it carries no power);
-    /// elsewhere σ is at least [`LEAST_SIGMA_SHARE`] of that.
+    /// elsewhere σ is at least a quarter of that (`LEAST_SIGMA_SHARE`).
     pub fn build(eta: f64, alpha: f64, beta: f64) -> Self {
         let mut texels = vec![[0.0f32; 7]; THETA_I_NODES * GAMMA_NODES];
         let smooth_sigma = beta * std::f64::consts::FRAC_1_SQRT_2;

@@ -71,11 +71,18 @@
 //!   azimuth and its spread in φ in the mean over the rough surface's micro-normals at both
 //!   events ([`crate::rough_deflection`], at every α; departure 20): near TT's edge, where the
 //!   smooth path bends and is blocked, the light a rough surface lets through leaves smoothly
-//!   in h and spreads several times wider than d'Eon et al. 2011's β/√2. TT's cone is taken
-//!   at the offset whose exit leaves at φ through the tilted scales ([`tilted_tt_offset`]),
-//!   not the one Bravais' Φ selects (departure 14). TRRT keeps Bravais' Φ (measured worse when moved).
-//! - Each M still integrates to 1, so ∫ S dω is the budget of [`NonSeparable::energy_budget`]
-//!   (1 minus the losses at μ_a = 0), not 1.
+//!   in h and spreads several times wider than d'Eon et al. 2011's β/√2; it reads Φ at
+//!   θ_d = −θ_i whatever θ_o ([`AzimuthalScattering::lobe_eta_prime`]), so that TT's
+//!   covariance of θ_o with φ is M_TT's alone (departure 21). TRRT keeps Bravais' Φ (measured
+//!   worse when moved).
+//! - TT's lobe at φ is the exit sine over the light of every offset that reaches φ through the
+//!   rough surface, each offset's exit sine taken given φ
+//!   ([`crate::rough_deflection::RoughTtTable::column_sine`]; departure 21), where the smooth
+//!   path at h = 0 leaves; where it is blocked, the cut lobe at the offset whose exit leaves
+//!   at φ through the tilted scales ([`tilted_tt_offset`], not the one Bravais' Φ selects;
+//!   departure 14), the two mixed over a band of θ_i between.
+//! - Each M still integrates to 1, so ∫ S dω is what [`NonSeparable::lobe_energies`] says
+//!   (1 minus the losses at μ_a = 0, R's off the rough surface), not 1.
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table, TT's and
 //! TRT's cones and widths from `lobe_table.rs` and, in the tilted model, the lobe-selection

@@ -494,7 +494,7 @@ impl RoughMirror {
     }
 
     /// R's energy at θ_i, ½ ∫ A(0, h) dh with step 1's albedo (bilinear in its table), by the
-    /// midpoint rule in γ on [`ENERGY_STEPS`] steps: what S's N_R integrates to over φ.
+    /// midpoint rule in γ, eight steps per node interval: what S's N_R integrates to over φ.
     pub fn energy(&self, theta_i: f64) -> f64 {
         let d_gamma = PI / ENERGY_STEPS as f64;
         (0..ENERGY_STEPS)
