@@ -357,10 +357,17 @@ impl AzimuthalScattering {
     /// and ∫ M_TT N_TT integrates to A(1, h)'s energy whatever shape M_TT has.
     #[inline]
     pub fn lobe_eta_prime(&self, p: usize, theta_i: f64, eta_p: f64) -> f64 {
-        match (&self.rough_tt, p) {
-            (Some(_), 1) => eta_prime(self.eta, theta_i),
-            _ => eta_p,
+        match self.deflection_reads_theta_d(p) {
+            true => eta_p,
+            false => eta_prime(self.eta, theta_i),
         }
+    }
+
+    /// Whether lobe p's Φ(p, h) moves with the θ_d it is read at ([`Self::lobe_eta_prime`]):
+    /// d'Eon et al. 2011's, but not TT's through the rough surface.
+    #[inline]
+    pub fn deflection_reads_theta_d(&self, p: usize) -> bool {
+        !(p == 1 && self.rough_tt.is_some())
     }
 
     /// What the scale tilt adds to TT's and TRT's Φ(p, h) ([`deflection_shift`]); 0 untilted

@@ -74,22 +74,11 @@ fn in_plane_signed((x, y): Nusselt, sign: f64) -> f64 {
 }
 
 /// The signs that make the chord's and the exit's in-plane angles positive on the smooth path
-/// at a small offset of sign s: the convention in which Φ = π + s (2γ′ − γ_i − γ_o). Where
-/// that smooth path is blocked, (−s, −s): the signs it has wherever it leaves
-/// (`in_plane_signs_are_one_convention`), and the rough surface still lets light out there.
-fn in_plane_signs(tilt: Tilt, theta_i: f64, eta: f64, s: f64) -> (f64, f64) {
-    smooth_in_plane_signs(tilt, theta_i, eta, s).unwrap_or((-s, -s))
-}
-
-/// [`in_plane_signs`] from the smooth path itself; `None` where it is blocked.
-fn smooth_in_plane_signs(tilt: Tilt, theta_i: f64, eta: f64, s: f64) -> Option<(f64, f64)> {
-    let entry = AtScale::outside(tilt, incident(theta_i, 0.25 * s)).ok()?;
-    let chord = entry.refract(eta).ok()?;
-    let exit = AtScale::inside(tilt, nusselt::propagate(chord))
-        .ok()?
-        .refract(eta)
-        .ok()?;
-    Some((chord.1.signum(), exit.1.signum()))
+/// at a small offset of sign s, the convention in which Φ = π + s (2γ′ − γ_i − γ_o): (−s, −s),
+/// wherever that path leaves (`in_plane_signs_follow_the_smooth_path`), and kept where it is
+/// blocked, where the rough surface still lets light out.
+fn in_plane_signs(s: f64) -> (f64, f64) {
+    (-s, -s)
 }
 
 /// `n` equal-probability slopes of the normal law of variance β²/2 ([`slope_quantiles`]),
@@ -118,7 +107,7 @@ pub fn rough_tt_exit(
 ) -> Option<RoughExit> {
     let tilt = Tilt::new(alpha);
     let s = if h < 0.0 { -1.0 } else { 1.0 };
-    let (chord_sign, exit_sign) = in_plane_signs(tilt, theta_i, eta, s);
+    let (chord_sign, exit_sign) = in_plane_signs(s);
     let d = incident(theta_i, h);
     let gamma_i = in_plane_signed(d, s);
     let entry = AtScale::outside(tilt, d).ok()?;
@@ -195,8 +184,9 @@ pub struct RoughAzimuth {
     pub sigma: f64,
 }
 
-/// The channels of a node: the shift, σ, Φ(1, h) itself, the exit sine's mean and standard
-/// deviation, the transmitted share, and the exit sine's covariance with φ.
+/// The channels of a node while the table is built: the shift, σ, Φ(1, h) itself, the exit
+/// sine's mean and standard deviation, the transmitted share, and the exit sine's covariance
+/// with φ. The table keeps the first two; the columns are made of the rest.
 const SHIFT: usize = 0;
 const SIGMA: usize = 1;
 const PHI: usize = 2;
@@ -204,14 +194,15 @@ const SIN_MEAN: usize = 3;
 const SIN_SD: usize = 4;
 const TRANSMITTED: usize = 5;
 const COVARIANCE: usize = 6;
-type Texel = [f32; 7];
+type Node = [f32; 7];
 
 /// [`rough_tt_exit`] over (θ_i, γ = asin |h|) for one fiber (η, α, β), by [`TABLE_RULE`]: the
 /// shift is odd in h, Φ is 2π less its value at −h, and the rest is even (the fiber is
 /// symmetric about the plane of incidence), so γ runs over [0, π/2] alone.
 #[derive(Clone, Debug)]
 pub struct RoughTtTable {
-    texels: Vec<Texel>,
+    /// Per node, the shift and σ.
+    texels: Vec<[f32; 2]>,
     /// The largest σ of any node: how far a lobe can reach.
     sigma_max: f64,
     /// Per θ_i node and column of |φ|, the mean and standard deviation of the exit sine over
@@ -242,13 +233,13 @@ impl RoughTtTable {
     /// Bravais' Φ at the specular cone and the smooth spread β/√2 (it carries no power);
     /// elsewhere σ is at least a quarter of that (`LEAST_SIGMA_SHARE`).
     pub fn build(eta: f64, alpha: f64, beta: f64) -> Self {
-        let mut texels = vec![[0.0f32; 7]; THETA_I_NODES * GAMMA_NODES];
+        let mut nodes: Vec<Node> = vec![[0.0; 7]; THETA_I_NODES * GAMMA_NODES];
         let smooth_sigma = beta * std::f64::consts::FRAC_1_SQRT_2;
-        fill_rows(&mut texels, GAMMA_NODES, |i, row| {
+        fill_rows(&mut nodes, GAMMA_NODES, |i, row| {
             let theta_i = theta_i_at(i);
-            for (k, texel) in row.iter_mut().enumerate() {
+            for (k, node) in row.iter_mut().enumerate() {
                 let h = gamma_at(k).sin();
-                *texel = match rough_tt_exit(theta_i, alpha, eta, beta, h, TABLE_RULE) {
+                *node = match rough_tt_exit(theta_i, alpha, eta, beta, h, TABLE_RULE) {
                     Some(exit) => [
                         exit.phi - bravais(eta, theta_i, h),
                         exit.sigma.max(LEAST_SIGMA_SHARE * smooth_sigma),
@@ -274,71 +265,14 @@ impl RoughTtTable {
                 .map(|x| x as f32);
             }
         });
-        let sigma_max = texels.iter().fold(0.0f64, |m, t| m.max(t[SIGMA] as f64));
-        let mut table = Self {
-            texels,
-            sigma_max,
-            columns: vec![],
-        };
         let mut columns = vec![[0.0f32; 2]; THETA_I_NODES * COLUMNS];
-        fill_rows(&mut columns, COLUMNS, |i, row| table.fill_columns(i, row));
-        table.columns = columns;
-        table
-    }
-
-    /// Row i's columns: the exit sine's moments over the light of every offset that reaches
-    /// the column, each offset weighted by its transmitted share and its Gaussian in φ there,
-    /// its exit sine taken given φ (each offset's (x, φ) a bivariate normal with the
-    /// quadrature's covariance: the light an offset sends away from its Φ leaves at another
-    /// inclination). Both signs of h; γ stepped [`SUBSTEPS`] times between nodes, the nodes'
-    /// channels linear between.
-    fn fill_columns(&self, i: usize, row: &mut [[f32; 2]]) {
-        let nodes = &self.texels[i * GAMMA_NODES..(i + 1) * GAMMA_NODES];
-        let mut steps = Vec::with_capacity(GAMMA_NODES * SUBSTEPS);
-        for k in 0..GAMMA_NODES - 1 {
-            for j in 0..SUBSTEPS {
-                let t = (j as f64 + 0.5) / SUBSTEPS as f64;
-                let lerp = |l: usize| nodes[k][l] as f64 * (1.0 - t) + nodes[k + 1][l] as f64 * t;
-                let gamma = gamma_at(k) * (1.0 - t) + gamma_at(k + 1) * t;
-                let weight = lerp(TRANSMITTED) * gamma.cos();
-                if weight > 0.0 {
-                    let sigma = lerp(SIGMA);
-                    // x given φ, a bivariate normal per offset: mean x̄ + c (φ − Φ) / σ², variance
-                    // σ_x² − c² / σ².
-                    let slope = lerp(COVARIANCE) / (sigma * sigma);
-                    let sd = lerp(SIN_SD);
-                    let conditional = (sd * sd - slope * lerp(COVARIANCE)).max(0.0);
-                    steps.push([lerp(PHI), sigma, weight, lerp(SIN_MEAN), slope, conditional]);
-                }
-            }
-        }
-        for (j, column) in row.iter_mut().enumerate() {
-            let phi = PI * j as f64 / (COLUMNS - 1) as f64;
-            let mut sums = [0.0f64; 3];
-            for &[centre, sigma, weight, mean, slope, conditional] in &steps {
-                // Offset h leaves about Φ(1, h), its mirror −h about −Φ(1, h) (where the
-                // covariance changes sign with φ − Φ's).
-                for c in [centre, -centre] {
-                    let d = crate::frame::wrap_pi(phi - c);
-                    let z = d / sigma;
-                    if z.abs() < 8.0 {
-                        let w = weight * (-0.5 * z * z).exp() / sigma;
-                        let m = mean + slope * d * c.signum();
-                        sums[0] += w;
-                        sums[1] += w * m;
-                        sums[2] += w * (conditional + m * m);
-                    }
-                }
-            }
-            let (mean, sd) = if sums[0] > 0.0 {
-                let mean = sums[1] / sums[0];
-                (mean, (sums[2] / sums[0] - mean * mean).max(0.0).sqrt())
-            } else {
-                // No offset's light reaches the column: the edge offset's lobe.
-                let edge = &nodes[GAMMA_NODES - 1];
-                (edge[SIN_MEAN] as f64, edge[SIN_SD] as f64)
-            };
-            *column = [mean as f32, sd.max(LEAST_SIN_SD) as f32];
+        fill_rows(&mut columns, COLUMNS, |i, row| {
+            fill_columns(&nodes[i * GAMMA_NODES..(i + 1) * GAMMA_NODES], row)
+        });
+        Self {
+            texels: nodes.iter().map(|n| [n[SHIFT], n[SIGMA]]).collect(),
+            sigma_max: nodes.iter().fold(0.0f64, |m, n| m.max(n[SIGMA] as f64)),
+            columns,
         }
     }
 
@@ -346,51 +280,107 @@ impl RoughTtTable {
         locate((theta_i + FRAC_PI_2) / PI, THETA_I_NODES)
     }
 
-    /// Channel `l` at θ_i's cell (i, f_i) and γ, blended bilinearly.
-    #[inline]
-    fn blend(&self, (i, fi): (usize, f32), gamma: f64, l: usize) -> f64 {
-        let (k, fk) = locate(gamma / FRAC_PI_2, GAMMA_NODES);
-        let at = i * GAMMA_NODES + k;
-        let node = |n: usize| self.texels[n][l] as f64;
-        let (fi, fk) = (fi as f64, fk as f64);
-        let low = node(at) + fk * (node(at + 1) - node(at));
-        let high =
-            node(at + GAMMA_NODES) + fk * (node(at + GAMMA_NODES + 1) - node(at + GAMMA_NODES));
-        low + fi * (high - low)
-    }
-
     /// The shift and spread at (θ_i, h), blended bilinearly in (θ_i, γ).
     #[inline]
     pub fn at(&self, theta_i: f64, h: f64) -> RoughAzimuth {
-        let row = Self::row(theta_i);
         let gamma = asin_fast(h.abs().min(1.0));
-        let shift = self.blend(row, gamma, SHIFT);
+        let column = locate(gamma / FRAC_PI_2, GAMMA_NODES);
+        let [shift, sigma] = blend(&self.texels, GAMMA_NODES, Self::row(theta_i), column);
         RoughAzimuth {
             shift: if h < 0.0 { -shift } else { shift },
-            sigma: self.blend(row, gamma, SIGMA),
+            sigma,
         }
     }
 
     /// The mean and standard deviation of the exit sine over the light leaving at azimuth φ
     /// for light at θ_i, blended bilinearly.
     pub fn column_sine(&self, theta_i: f64, phi: f64) -> (f64, f64) {
-        let (i, fi) = Self::row(theta_i);
-        let (k, fk) = locate(crate::frame::wrap_pi(phi).abs() / PI, COLUMNS);
-        let at = i * COLUMNS + k;
-        let (fi, fk) = (fi as f64, fk as f64);
-        let blend = |l: usize| {
-            let node = |n: usize| self.columns[n][l] as f64;
-            let low = node(at) + fk * (node(at + 1) - node(at));
-            let high = node(at + COLUMNS) + fk * (node(at + COLUMNS + 1) - node(at + COLUMNS));
-            low + fi * (high - low)
-        };
-        (blend(0), blend(1))
+        let column = locate(crate::frame::wrap_pi(phi).abs() / PI, COLUMNS);
+        let [mean, sd] = blend(&self.columns, COLUMNS, Self::row(theta_i), column);
+        (mean, sd)
     }
 
     /// The largest spread of any offset.
     pub fn sigma_max(&self) -> f64 {
         self.sigma_max
     }
+}
+
+/// One θ_i row's columns from its `nodes`: the exit sine's moments over the light of every
+/// offset that reaches the column, each offset weighted by its transmitted share and its
+/// Gaussian in φ there, its exit sine taken given φ (each offset's (x, φ) a bivariate normal
+/// with the quadrature's covariance: the light an offset sends away from its Φ leaves at
+/// another inclination). Both signs of h; γ stepped [`SUBSTEPS`] times between nodes, the
+/// nodes' channels linear between.
+fn fill_columns(nodes: &[Node], row: &mut [[f32; 2]]) {
+    let mut steps = Vec::with_capacity(GAMMA_NODES * SUBSTEPS);
+    for k in 0..GAMMA_NODES - 1 {
+        for j in 0..SUBSTEPS {
+            let t = (j as f64 + 0.5) / SUBSTEPS as f64;
+            let lerp = |l: usize| nodes[k][l] as f64 * (1.0 - t) + nodes[k + 1][l] as f64 * t;
+            let gamma = gamma_at(k) * (1.0 - t) + gamma_at(k + 1) * t;
+            let weight = lerp(TRANSMITTED) * gamma.cos();
+            if weight > 0.0 {
+                let sigma = lerp(SIGMA);
+                // x given φ, a bivariate normal per offset: mean x̄ + c (φ − Φ) / σ², variance
+                // σ_x² − c² / σ².
+                let covariance = lerp(COVARIANCE);
+                let slope = covariance / (sigma * sigma);
+                let sd = lerp(SIN_SD);
+                let conditional = (sd * sd - slope * covariance).max(0.0);
+                steps.push([lerp(PHI), sigma, weight, lerp(SIN_MEAN), slope, conditional]);
+            }
+        }
+    }
+    for (j, column) in row.iter_mut().enumerate() {
+        let phi = PI * j as f64 / (COLUMNS - 1) as f64;
+        let mut sums = [0.0f64; 3];
+        for &[centre, sigma, weight, mean, slope, conditional] in &steps {
+            // Offset h leaves about Φ(1, h), its mirror −h about −Φ(1, h) (where the
+            // covariance changes sign with φ − Φ's).
+            for c in [centre, -centre] {
+                let d = crate::frame::wrap_pi(phi - c);
+                let z = d / sigma;
+                if z.abs() < 8.0 {
+                    let w = weight * (-0.5 * z * z).exp() / sigma;
+                    let m = mean + slope * d * c.signum();
+                    sums[0] += w;
+                    sums[1] += w * m;
+                    sums[2] += w * (conditional + m * m);
+                }
+            }
+        }
+        let (mean, sd) = if sums[0] > 0.0 {
+            let mean = sums[1] / sums[0];
+            (mean, (sums[2] / sums[0] - mean * mean).max(0.0).sqrt())
+        } else {
+            // No offset's light reaches the column: the edge offset's lobe.
+            let edge = &nodes[GAMMA_NODES - 1];
+            (edge[SIN_MEAN] as f64, edge[SIN_SD] as f64)
+        };
+        *column = [mean as f32, sd.max(LEAST_SIN_SD) as f32];
+    }
+}
+
+/// Both channels of `texels` (rows of `stride`) at the cells (i, f_i) and (k, f_k), blended
+/// bilinearly in f64.
+#[inline]
+fn blend(
+    texels: &[[f32; 2]],
+    stride: usize,
+    (i, fi): (usize, f32),
+    (k, fk): (usize, f32),
+) -> [f64; 2] {
+    let at = i * stride + k;
+    let (fi, fk) = (fi as f64, fk as f64);
+    let node = |n: usize, l: usize| texels[n][l] as f64;
+    let mut out = [0.0; 2];
+    for (l, o) in out.iter_mut().enumerate() {
+        let low = node(at, l) + fk * (node(at + 1, l) - node(at, l));
+        let high = node(at + stride, l) + fk * (node(at + stride + 1, l) - node(at + stride, l));
+        *o = low + fi * (high - low);
+    }
+    out
 }
 
 /// Bravais' Φ(1, h) at θ_d = −θ_i, from which the table's shift is measured: where N_TT reads
@@ -476,10 +466,22 @@ mod tests {
         }
     }
 
-    /// The sign convention of the in-plane angles is one and the same wherever the smooth path
-    /// at a small offset leaves, so the quadrature keeps it where that path is blocked.
+    /// The signs that make the chord's and the exit's in-plane angles positive on the smooth
+    /// path at offset 0.25 s, traced; `None` where that path is blocked.
+    fn smooth_in_plane_signs(tilt: Tilt, theta_i: f64, eta: f64, s: f64) -> Option<(f64, f64)> {
+        let entry = AtScale::outside(tilt, incident(theta_i, 0.25 * s)).ok()?;
+        let chord = entry.refract(eta).ok()?;
+        let exit = AtScale::inside(tilt, nusselt::propagate(chord))
+            .ok()?
+            .refract(eta)
+            .ok()?;
+        Some((chord.1.signum(), exit.1.signum()))
+    }
+
+    /// The sign convention of the in-plane angles is the smooth path's wherever that path at a
+    /// small offset leaves, so the quadrature keeps it where the path is blocked.
     #[test]
-    fn in_plane_signs_are_one_convention() {
+    fn in_plane_signs_follow_the_smooth_path() {
         let (mut open, mut blocked) = (0, 0);
         for eta in [1.2, 1.55, 2.0] {
             for i in 0..60 {
@@ -489,7 +491,11 @@ mod tests {
                     for s in [-1.0, 1.0] {
                         match smooth_in_plane_signs(tilt, theta_i, eta, s) {
                             Some(signs) => {
-                                assert_eq!(signs, (-s, -s), "η {eta} θ_i {theta_i} α {alpha_deg}°");
+                                assert_eq!(
+                                    signs,
+                                    in_plane_signs(s),
+                                    "η {eta} θ_i {theta_i} α {alpha_deg}°"
+                                );
                                 open += 1;
                             }
                             None => blocked += 1,

@@ -786,9 +786,9 @@ impl NonSeparable {
         // it: only Φ changes from one iteration to the next.
         let fixed =
             self.deflection_shift(p, wi.theta, h) + azimuthal_offset(az, p, wi.theta, h, u_phi);
-        if p == 1 && az.rough_tt.is_some() {
-            let eta_p = az.lobe_eta_prime(p, wi.theta, az.eta);
-            let phi = azimuthal_deflection(1, h, eta_p) + fixed;
+        if !az.deflection_reads_theta_d(p) {
+            let eta_p = az.lobe_eta_prime(p, wi.theta, eta_prime(az.eta, -wi.theta));
+            let phi = azimuthal_deflection(p as u32, h, eta_p) + fixed;
             let theta_o = asin_fast(self.sample_lobe_sin(p, wi.theta, wrap_pi(phi), u_m));
             return (theta_o, phi, 1);
         }
