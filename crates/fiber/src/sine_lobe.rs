@@ -16,9 +16,9 @@
 //! ([`erfc_lanes`]), and M and its draws share it, so M integrates to 1 within that.
 
 use crate::longitudinal::MIN_VARIANCE;
-use crate::special::{erfc_lanes, exp_fast, exp_lanes, normal_quantile_fast};
+use crate::special::{erfc_lanes, exp_fast, exp_pair, normal_quantile_fast};
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
-use wide::f64x4;
+use wide::{f64x2, f64x4};
 
 /// The mean and variance of sin θ_o over some light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -227,8 +227,7 @@ impl SkewedSineLobe {
         let [a, b] = self.parts;
         let za = (sin_o - a.mean) * a.inv_sd;
         let zb = (sin_o - b.mean) * b.inv_sd;
-        let [ea, eb, _, _]: [f64; 4] =
-            exp_lanes(f64x4::from([-0.5 * za * za, -0.5 * zb * zb, 0.0, 0.0])).into();
+        let [ea, eb] = exp_pair(f64x2::new([-0.5 * za * za, -0.5 * zb * zb])).to_array();
         (1.0 - SKEW_WEIGHT) * a.peak * ea + SKEW_WEIGHT * b.peak * eb
     }
 

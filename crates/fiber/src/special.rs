@@ -9,7 +9,7 @@
 use bytemuck::cast;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
-use wide::{CmpLe, CmpLt, f32x4, f64x2, f64x4, u64x4};
+use wide::{CmpLe, CmpLt, f32x4, f64x2, f64x4, u64x2, u64x4};
 
 /// ln I0(x) for x ≥ 0, accurate to ~1e-12 relative everywhere: the power series below 20, the
 /// asymptotic expansion I0(x) ~ eˣ/√(2πx) Σ ((2k−1)!!)² / (k! (8x)ᵏ) above (d'Eon 2013 notes
@@ -77,7 +77,7 @@ fn horner(c: &[f64], x: f64) -> f64 {
     rest.iter().rev().fold(*last, |acc, c| acc * x + c)
 }
 
-/// Σ cₖ xᵏ (k < 9) by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those
+/// Σ cₖ xᵏ (k < 9) by Estrin's scheme (Estrin 1960), for two or four lanes: pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those
 /// in x², then x⁴ and x⁸: a dependency chain of four multiply-adds where Horner's is eight,
 /// for a few more multiplications. The scalar functions on every model's critical path
 /// ([`sin_cos_quadrant`], [`asin_fast`], [`atan2_fast`], [`ln_fast`], [`exp_fast`]) take it,
@@ -396,41 +396,56 @@ pub fn exp_fast(x: f64) -> f64 {
     p * (EXP2_32THS[(n & 31) as usize] * f64::from_bits(((m + 1023) as u64) << 52))
 }
 
+/// The body of [`exp_lanes`] and [`exp_pair`] for one lane type: [`exp_fast`]'s reduction
+/// without its table, x = n ln 2 + r with |r| ≤ ln 2 / 2 (Cody & Waite 1980's split of ln 2)
+/// and e^r by its Taylor series to r⁷ in Estrin's order (the remainder, at most (r⁸/8!) e^{|r|},
+/// is 7.4e-9 relative), 2ⁿ put in the exponent bits; SIMD registers throughout, no table and
+/// no branch. Below −708, where eˣ leaves the normal range, it gives 0; above 709 it gives
+/// e⁷⁰⁹; NaN stays NaN. One body, so that every lane of either width does the same arithmetic.
+macro_rules! exp_in_lanes {
+    ($x:expr, $float:ty, $bits:ty) => {{
+        let x: $float = $x;
+        // Adding 1.5·2⁵² rounds to the nearest integer, which then sits in the low mantissa bits.
+        const ROUND: f64 = 6_755_399_441_055_744.0;
+        const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+        const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
+        const TAYLOR: [f64; 8] = {
+            let mut c = [1.0; 8];
+            let mut k = 1;
+            while k < 8 {
+                c[k] = c[k - 1] / k as f64;
+                k += 1;
+            }
+            c
+        };
+        let splat = <$float>::splat;
+        let low = x.cmp_lt(splat(-708.0));
+        let xc = x.fast_max(splat(-708.0)).fast_min(splat(709.0));
+        let shifted = xc.mul_add(splat(std::f64::consts::LOG2_E), splat(ROUND));
+        let n = shifted - splat(ROUND);
+        let r = n.mul_neg_add(splat(LN2_HI), xc);
+        let r = n.mul_neg_add(splat(LN2_LO), r);
+        let p = estrin8_lanes(&TAYLOR, r);
+        let bits: $bits = cast(shifted);
+        let exponent = (bits - <$bits>::splat(ROUND.to_bits() - 1023)) << 52;
+        let e = low.blend(<$float>::ZERO, p * cast::<$bits, $float>(exponent));
+        x.is_nan().blend(x, e)
+    }};
+}
+
 /// eˣ in each of four lanes, to 8e-9 relative: what the models' M needs, whose I0 by
 /// Abramowitz & Stegun is good to 6e-7 (`exp_lanes_is_within_its_bound` measures its error
-/// against `f64::exp`). [`exp_fast`]'s reduction without its table, x = n ln 2 + r with
-/// |r| ≤ ln 2 / 2 (Cody & Waite 1980's split of ln 2) and e^r by its Taylor series to r⁷ (the
-/// remainder, at most (r⁸/8!) e^{|r|}, is 7.4e-9 relative), 2ⁿ put in the exponent bits; SIMD
-/// registers throughout, no table and no branch. Below −708, where eˣ leaves the normal range,
-/// it gives 0; above 709 it gives e⁷⁰⁹; NaN stays NaN.
+/// against `f64::exp`). The arithmetic is [`exp_in_lanes`]'s.
 #[inline(always)]
 pub fn exp_lanes(x: f64x4) -> f64x4 {
-    // Adding 1.5·2⁵² rounds to the nearest integer, which then sits in the low mantissa bits.
-    const ROUND: f64 = 6_755_399_441_055_744.0;
-    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
-    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
-    const TAYLOR: [f64; 8] = {
-        let mut c = [1.0; 8];
-        let mut k = 1;
-        while k < 8 {
-            c[k] = c[k - 1] / k as f64;
-            k += 1;
-        }
-        c
-    };
-    let low = x.cmp_lt(f64x4::splat(-708.0));
-    let xc = x
-        .fast_max(f64x4::splat(-708.0))
-        .fast_min(f64x4::splat(709.0));
-    let shifted = xc.mul_add(f64x4::splat(std::f64::consts::LOG2_E), f64x4::splat(ROUND));
-    let n = shifted - f64x4::splat(ROUND);
-    let r = n.mul_neg_add(f64x4::splat(LN2_HI), xc);
-    let r = n.mul_neg_add(f64x4::splat(LN2_LO), r);
-    let p = estrin8_lanes(&TAYLOR, r);
-    let bits: u64x4 = cast(shifted);
-    let exponent = (bits - u64x4::splat(ROUND.to_bits() - 1023)) << 52;
-    let e = low.blend(f64x4::ZERO, p * cast::<u64x4, f64x4>(exponent));
-    x.is_nan().blend(x, e)
+    exp_in_lanes!(x, f64x4, u64x4)
+}
+
+/// [`exp_lanes`] in two lanes, for a caller with two exponentials: the same bits lane by lane
+/// (`exp_pair_is_exp_lanes`) at half the instructions where the target's registers hold two.
+#[inline(always)]
+pub fn exp_pair(x: f64x2) -> f64x2 {
+    exp_in_lanes!(x, f64x2, u64x2)
 }
 
 /// Where [`i0_as`] leaves Abramowitz & Stegun 9.8.1 for 9.8.2.
@@ -571,15 +586,37 @@ pub fn narrow_mask(m: f64x4) -> f32x4 {
     f32x4::new(m.to_array().map(|v| f32::from_bits(v.to_bits() as u32)))
 }
 
-/// Σ cₖ xᵏ (k < 8) in each of four lanes, lowest coefficient first, by Estrin's scheme
-/// (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then in x⁴, three levels
+/// Double-precision lanes of either width, for the polynomials both take.
+trait F64Lanes: Copy + std::ops::Mul<Output = Self> {
+    fn splat(x: f64) -> Self;
+    fn mul_add(self, m: Self, a: Self) -> Self;
+}
+
+macro_rules! f64_lanes {
+    ($($lanes:ty),*) => {$(
+        impl F64Lanes for $lanes {
+            #[inline(always)]
+            fn splat(x: f64) -> Self {
+                <$lanes>::splat(x)
+            }
+            #[inline(always)]
+            fn mul_add(self, m: Self, a: Self) -> Self {
+                <$lanes>::mul_add(self, m, a)
+            }
+        }
+    )*};
+}
+f64_lanes!(f64x2, f64x4);
+
+/// Σ cₖ xᵏ (k < 8) in each lane, lowest coefficient first, by Estrin's scheme
+/// (Estrin 1960), for two or four lanes: pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then in x⁴, three levels
 /// where Horner's chain is seven multiply-adds long (the lanes' latency, not their count,
 /// bounds the models' M). [`estrin8_lanes_f32`] is the same in single precision, and
 /// [`estrin7_lanes_f32`] and [`estrin9_lanes_f32`] take one coefficient fewer and one more, so
 /// no multiply-add by a zero coefficient is spent.
 #[inline(always)]
-fn estrin8_lanes(c: &[f64; 8], x: f64x4) -> f64x4 {
-    let pair = |i: usize| f64x4::splat(c[i + 1]).mul_add(x, f64x4::splat(c[i]));
+fn estrin8_lanes<L: F64Lanes>(c: &[f64; 8], x: L) -> L {
+    let pair = |i: usize| L::splat(c[i + 1]).mul_add(x, L::splat(c[i]));
     let x2 = x * x;
     let low = pair(2).mul_add(x2, pair(0));
     let high = pair(6).mul_add(x2, pair(4));
@@ -1130,6 +1167,29 @@ mod tests {
     fn exp_lanes_is_within_its_bound() {
         let worst = exp_in_lanes_error("exp_lanes", exp_lanes);
         assert!(worst < 8e-9, "{worst:e}");
+    }
+
+    #[test]
+    fn exp_pair_is_exp_lanes() {
+        // Lane by lane the same bits, over the range and at its edges.
+        let edges = [
+            -708.5,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            0.0,
+            709.5,
+            -1e-300,
+            1.0,
+            -0.3,
+        ];
+        let grid = (-141_600..=141_800).map(|k| k as f64 * 5.0e-3 + 1.3e-7);
+        let xs: Vec<f64> = grid.chain(edges).collect();
+        for x in xs.chunks_exact(4) {
+            let four = exp_lanes(f64x4::new(x.try_into().unwrap())).to_array();
+            let two = [0, 2].map(|j| exp_pair(f64x2::new([x[j], x[j + 1]])).to_array());
+            let two = [two[0][0], two[0][1], two[1][0], two[1][1]];
+            assert_eq!(four.map(f64::to_bits), two.map(f64::to_bits), "{x:?}");
+        }
     }
 
     #[test]

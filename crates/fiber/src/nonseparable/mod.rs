@@ -136,15 +136,22 @@ use tt_offsets::TtOffsets;
 /// No R offsets: the paper's form, or a lobe other than R.
 const NO_MIRRORS: [Option<MirrorOffset>; 3] = [None; 3];
 
-/// What an evaluation at one (ω_i, ω_o) needs under either weighting: θ_d, φ, R's offsets
+/// What an evaluation at one (ω_i, ω_o) needs under either weighting: θ_d, φ, what N_R reads
 /// and M_p at θ_o.
 struct Pair {
     theta_d: f64,
     phi: f64,
-    mirrors: [Option<MirrorOffset>; 3],
+    r: RPair,
     m: [f64; 4],
-    /// S's N_R where the rough mirror gives it, read with R's lobe.
-    rough_n_r: Option<f64>,
+}
+
+/// What N_R needs of one pair, found with R's lobe.
+enum RPair {
+    /// S's N_R from the rough mirror (departure 11), read with R's lobe.
+    Rough { n_r: f64 },
+    /// R's offsets: solved where the scales tilt and no rough mirror answers, none in the
+    /// paper's form. Only this variant carries them, so a rough pair is not a copy of three.
+    Mirrors([Option<MirrorOffset>; 3]),
 }
 
 /// Fixed-point iterations per sample unless set otherwise (d'Eon et al. 2014 Figure 7 uses 6).
@@ -672,24 +679,28 @@ impl NonSeparable {
 
     /// N_R, from its solved offsets where the scales tilt it.
     fn azimuthal_r(&self, pair: &Pair, theta_i: f64, weighting: Weighting) -> DVec3 {
-        if let Some(rough) = self.rough_mirror() {
-            return DVec3::splat(match (weighting, pair.rough_n_r) {
-                (Weighting::Attenuation, Some(n_r)) => n_r,
-                _ => rough.density(theta_i, pair.phi, weighting),
-            });
-        }
+        let mirrors = match (&pair.r, weighting) {
+            (&RPair::Rough { n_r }, Weighting::Attenuation) => return DVec3::splat(n_r),
+            (RPair::Rough { .. }, Weighting::Selection) => {
+                let rough = self
+                    .rough_mirror()
+                    .expect("a rough pair has the rough mirror");
+                return DVec3::splat(rough.density(theta_i, pair.phi, weighting));
+            }
+            (RPair::Mirrors(mirrors), _) => mirrors,
+        };
         let az = self.azimuthal();
         if az.scale_tilt != 0.0 {
             match (&self.selection, weighting) {
                 // R's share of the offsets that reach φ, as the sampler chooses it.
                 (Some(table), Weighting::Selection) => DVec3::splat(
-                    pair.mirrors
+                    mirrors
                         .iter()
                         .flatten()
                         .map(|m| 0.5 * m.dh_dphi * table.at(theta_i, m.h)[0])
                         .sum(),
                 ),
-                _ => az.eval_r_at_mirrors(theta_i, &pair.mirrors, weighting),
+                _ => az.eval_r_at_mirrors(theta_i, mirrors, weighting),
             }
         } else {
             az.eval(0, theta_i, pair.theta_d, pair.phi, weighting)
@@ -700,20 +711,23 @@ impl NonSeparable {
     fn pair(&self, wi: FiberAngles, wo: FiberAngles) -> Pair {
         let theta_d = 0.5 * (wo.theta - wi.theta);
         let phi = wrap_pi(wo.phi - wi.phi);
-        let mirrors = match self.needs_mirrors() {
-            true => self.mirrors(wi.theta, phi),
-            false => NO_MIRRORS,
-        };
         let (sin_o, cos_o) = sin_cos_quadrant(wo.theta);
-        // Written out: `array::from_fn`'s closure can stay a call per lobe.
-        let lobe = |p| self.cone_lobe(p, wi.theta, phi, &mirrors);
+        // Only R's lobe reads the offsets.
+        let lobe = |p| self.cone_lobe(p, wi.theta, phi, &NO_MIRRORS);
         // R's lobe and its N_R from one read of the rough mirror's columns.
-        let (r, rough_n_r) = match self.rough_mirror() {
+        let (r, r_pair) = match self.rough_mirror() {
             Some(rough) => {
                 let (r, n_r) = rough.column_at(wi.theta, sin_cos_quadrant(wi.theta).0, phi);
-                (r, Some(n_r))
+                (r, RPair::Rough { n_r })
             }
-            None => (lobe(0), None),
+            None => {
+                let mirrors = match self.needs_mirrors() {
+                    true => self.mirrors(wi.theta, phi),
+                    false => NO_MIRRORS,
+                };
+                let r = self.cone_lobe(0, wi.theta, phi, &mirrors);
+                (r, RPair::Mirrors(mirrors))
+            }
         };
         let trt = lobe(2);
         let m = match self.scales {
@@ -728,9 +742,8 @@ impl NonSeparable {
         Pair {
             theta_d,
             phi,
-            mirrors,
+            r: r_pair,
             m,
-            rough_n_r,
         }
     }
 
