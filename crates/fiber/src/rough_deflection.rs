@@ -150,43 +150,34 @@ fn exit_pairs(
         matched_slopes(beta, rule.exit),
     );
     let normal = |sx: f64, sy: f64| DVec3::new(-sx, -sy, 1.0).normalize();
-    let blocked = ExitPair::default();
+    // The chord an entry micro-normal refracts the light into, where it meets the exit's
+    // scale, and the entry's weight.
+    let chord_at = |ax: f64, ay: f64| {
+        let (into, w_in) = refraction_at(entry.arriving(), normal(ax, ay), beta, eta)?;
+        let chord = entry.leaving(into).ok()?;
+        let exit = AtScale::inside(tilt, nusselt::propagate(chord)).ok()?;
+        Some((chord, exit, w_in))
+    };
     for &ax in &entry_slopes {
         for &ay in &entry_slopes {
-            let exit_count = rule.exit * rule.exit;
-            let Some((into, w_in)) = refraction_at(entry.arriving(), normal(ax, ay), beta, eta)
-            else {
-                pairs.extend(std::iter::repeat_n(blocked, exit_count));
-                continue;
-            };
-            let Ok(chord) = entry.leaving(into) else {
-                pairs.extend(std::iter::repeat_n(blocked, exit_count));
-                continue;
-            };
-            let Ok(exit) = AtScale::inside(tilt, nusselt::propagate(chord)) else {
-                pairs.extend(std::iter::repeat_n(blocked, exit_count));
+            let Some((chord, exit, w_in)) = chord_at(ax, ay) else {
+                let blocked = rule.exit * rule.exit;
+                pairs.extend(std::iter::repeat_n(ExitPair::default(), blocked));
                 continue;
             };
             let twice_chord = 2.0 * in_plane_signed(chord, chord_sign);
+            let leave = |bx: f64, by: f64| {
+                let (out, w_out) = refraction_at(exit.arriving(), normal(bx, by), beta, 1.0 / eta)?;
+                let leaving = exit.leaving(out).ok()?;
+                Some(ExitPair {
+                    weight: w_in * w_out,
+                    sin_theta: leaving.0,
+                    phi: PI + s * (twice_chord - gamma_i - in_plane_signed(leaving, exit_sign)),
+                })
+            };
             for &bx in &exit_slopes {
                 for &by in &exit_slopes {
-                    let Some((out, w_out)) =
-                        refraction_at(exit.arriving(), normal(bx, by), beta, 1.0 / eta)
-                    else {
-                        pairs.push(blocked);
-                        continue;
-                    };
-                    let Ok(leaving) = exit.leaving(out) else {
-                        pairs.push(blocked);
-                        continue;
-                    };
-                    let phi =
-                        PI + s * (twice_chord - gamma_i - in_plane_signed(leaving, exit_sign));
-                    pairs.push(ExitPair {
-                        weight: w_in * w_out,
-                        sin_theta: leaving.0,
-                        phi,
-                    });
+                    pairs.push(leave(bx, by).unwrap_or_default());
                 }
             }
         }
@@ -267,6 +258,8 @@ const LEAST_SIN_SD: f64 = 1e-4;
 /// The share of a row's brightest column's light below which a column of [`fill_columns`]
 /// takes its nearest brighter neighbour's lobe: its own is of a few pairs' tails.
 const DIM_SHARE: f64 = 1e-3;
+/// The least standard deviation of a column's exit sine, as a share of its whole row's: a dim
+/// column's few pairs can all leave at one inclination.
 const LEAST_SD_SHARE: f64 = 0.25;
 
 /// One θ_i row of the table while it is built.
@@ -362,8 +355,9 @@ impl RoughTtTable {
 /// (a pair whose light leaves at one node alone keeps that node's exit and fades), weighted by
 /// dh = cos γ dγ and split between the two columns about its |φ|. A column with less than
 /// [`DIM_SHARE`] of the brightest column's light takes the lobe of the nearest column with
-/// more (the model's N_TT, Gaussian per offset, still sends it some light); a row with no
-/// light at all takes `smooth`.
+/// more (the model's N_TT, Gaussian per offset, still sends it some light), and every
+/// column's deviation is at least [`LEAST_SD_SHARE`] of the row's; a row with no light at
+/// all takes `smooth`.
 fn fill_columns(pairs: &[Vec<ExitPair>], smooth: [f64; 2], row: &mut [[f32; 2]]) {
     let mut sums = [[0.0f64; 3]; COLUMNS];
     let mut add = |weight: f64, x: f64, phi: f64| {
@@ -399,28 +393,29 @@ fn fill_columns(pairs: &[Vec<ExitPair>], smooth: [f64; 2], row: &mut [[f32; 2]])
         }
     }
     let brightest = sums.iter().fold(0.0f64, |m, s| m.max(s[0]));
+    if brightest <= 0.0 {
+        row.fill(smooth.map(|x| x as f32));
+        return;
+    }
     let row_sums = sums
         .iter()
         .fold([0.0; 3], |acc, s| std::array::from_fn(|l| acc[l] + s[l]));
-    let row_mean = row_sums[1] / row_sums[0];
-    let least_sd = (LEAST_SD_SHARE
-        * (row_sums[2] / row_sums[0] - row_mean * row_mean)
-            .max(0.0)
-            .sqrt())
-    .max(LEAST_SIN_SD);
+    let least_sd = (LEAST_SD_SHARE * mean_and_sd(&row_sums)[1]).max(LEAST_SIN_SD);
     let lit: Vec<usize> = (0..COLUMNS)
         .filter(|&j| sums[j][0] > DIM_SHARE * brightest)
         .collect();
     for (j, column) in row.iter_mut().enumerate() {
-        let lobe = match lit.iter().min_by_key(|&&l| l.abs_diff(j)) {
-            Some(&l) => {
-                let [e1, e2] = [sums[l][1], sums[l][2]].map(|x| x / sums[l][0]);
-                [e1, (e2 - e1 * e1).max(0.0).sqrt().max(least_sd)]
-            }
-            None => smooth,
-        };
-        *column = lobe.map(|x| x as f32);
+        let nearest = lit.iter().min_by_key(|&&l| l.abs_diff(j));
+        // The brightest column is lit, so there is a nearest one.
+        let [mean, sd] = nearest.map_or(smooth, |&l| mean_and_sd(&sums[l]));
+        *column = [mean, sd.max(least_sd)].map(|x| x as f32);
     }
+}
+
+/// The mean and standard deviation of x from the sums of w, w x and w x² (w > 0 summed).
+fn mean_and_sd([w, wx, wxx]: &[f64; 3]) -> [f64; 2] {
+    let mean = wx / w;
+    [mean, (wxx / w - mean * mean).max(0.0).sqrt()]
 }
 
 /// Every channel of `texels` (rows of `stride`) at the cells (i, f_i) and (k, f_k), blended
