@@ -107,6 +107,23 @@ impl SineLobe {
         }
     }
 
+    /// The mean and variance of this part as it is, truncated to [−1, 1]
+    /// ([`SkewedSineLobe::truncated_moments`]).
+    fn truncated_moments(&self) -> SineMoments {
+        let density = |z: f64| (-0.5 * z * z).exp() / (2.0 * PI).sqrt();
+        let (low, high) = (
+            (-1.0 - self.mean) * self.inv_sd,
+            (1.0 - self.mean) * self.inv_sd,
+        );
+        let (d_low, d_high) = (density(low), density(high));
+        let shift = (d_low - d_high) / self.mass;
+        let spread = 1.0 + (low * d_low - high * d_high) / self.mass - shift * shift;
+        SineMoments {
+            mean: self.mean + self.sd * shift,
+            variance: self.sd * self.sd * spread.max(0.0),
+        }
+    }
+
     /// M at sin θ_o = `sin_o`.
     #[inline]
     pub fn eval(&self, sin_o: f64) -> f64 {
@@ -137,6 +154,12 @@ impl SineLobe {
 fn end_distances(mean: f64, inv_sd: f64) -> [f64; 2] {
     [(1.0 - mean.abs()) * inv_sd, (1.0 + mean.abs()) * inv_sd]
 }
+
+/// Fixed-point steps of [`SkewedSineLobe::matching`].
+const MATCHING_STEPS: usize = 8;
+/// Deviations from the nearer pole beyond which [`SkewedSineLobe::matched`] matches in full;
+/// within one it gives the target itself.
+const MATCHED_FROM: f64 = 2.0;
 
 /// The weight of [`SkewedSineLobe`]'s second part, on the side of its skew.
 const SKEW_WEIGHT: f64 = 0.2;
@@ -210,6 +233,70 @@ impl SkewedSineLobe {
         }
     }
 
+    /// The lobe of `skewed`'s split whose truncation to [−1, 1] has `skewed`'s mean and
+    /// variance: near a pole the ends cut a Gaussian's tail off and move the truncated mean
+    /// toward the equator, so the untruncated mean and deviation are set apart from the
+    /// target by what the cut takes ([`Self::truncated_moments`], a few fixed-point steps).
+    pub fn matching(skewed: SkewedSine) -> Self {
+        let SineMoments { mean, variance } = Self::matched(skewed);
+        Self::split(mean, variance.sqrt(), SkewSplit::new(skewed.skewness))
+    }
+
+    /// The untruncated mean and variance that [`Self::matching`] splits.
+    pub fn matched(skewed: SkewedSine) -> SineMoments {
+        let target = skewed.moments;
+        let split = SkewSplit::new(skewed.skewness);
+        let target_sd = target.variance.max(0.0).sqrt();
+        let (mut mean, mut sd) = (target.mean.clamp(-1.0, 1.0), target_sd);
+        // Secant steps in each: the truncated mean moves by less than the untruncated one
+        // near a pole (by about half at 1.7 deviations from it), so a plain step undershoots.
+        let mut last: Option<([f64; 2], [f64; 2])> = None;
+        for _ in 0..MATCHING_STEPS {
+            let got = Self::split(mean, sd, split).truncated_moments();
+            let got = [got.mean, got.variance.sqrt()];
+            if !(got[1] > 0.0 && got[0].is_finite()) {
+                break;
+            }
+            let slope = |l: usize, at: f64, last: Option<([f64; 2], [f64; 2])>| {
+                let ([x, _], [y, _]) = last.map(|(p, g)| ([p[l], 0.0], [g[l], 0.0]))?;
+                let s = (got[l] - y) / (at - x);
+                (s.is_finite() && s > 0.1).then_some(s)
+            };
+            let mean_slope = slope(0, mean, last).unwrap_or(1.0);
+            let sd_slope = slope(1, sd, last).unwrap_or(got[1] / sd);
+            last = Some(([mean, sd], got));
+            mean = (mean + (target.mean - got[0]) / mean_slope).clamp(-1.0, 1.0);
+            sd = (sd + (target_sd - got[1]) / sd_slope).max(0.25 * target_sd);
+        }
+        // Within a deviation or two of a pole no untruncated lobe inside [−1, 1] has the
+        // target's moments: there the match fades to the target itself, smoothly in the
+        // distance, so that a table of it stays smooth.
+        let distance = (1.0 - target.mean.abs()) / target_sd.max(f64::MIN_POSITIVE);
+        let t = ((distance - 1.0) / (MATCHED_FROM - 1.0)).clamp(0.0, 1.0);
+        let share = t * t * (3.0 - 2.0 * t);
+        let sd = target_sd + share * (sd - target_sd);
+        SineMoments {
+            mean: target.mean + share * (mean - target.mean),
+            variance: sd * sd,
+        }
+    }
+
+    /// The mean and variance of the mixture as it is, each part truncated to [−1, 1]
+    /// (Johnson, Kotz & Balakrishnan 1994 §10.1: a normal of mean μ and deviation σ cut to
+    /// [a, b] has mean μ + σ (φ(α) − φ(β)) / Z and variance
+    /// σ² (1 + (α φ(α) − β φ(β)) / Z − ((φ(α) − φ(β)) / Z)²), α = (a − μ)/σ, β = (b − μ)/σ).
+    pub fn truncated_moments(&self) -> SineMoments {
+        let w = SKEW_WEIGHT;
+        let [a, b] = self.parts.map(|p| p.truncated_moments());
+        let mean = (1.0 - w) * a.mean + w * b.mean;
+        let second =
+            (1.0 - w) * (a.variance + a.mean * a.mean) + w * (b.variance + b.mean * b.mean);
+        SineMoments {
+            mean,
+            variance: (second - mean * mean).max(0.0),
+        }
+    }
+
     /// The mean and variance of the untruncated mixture.
     pub fn moments(&self) -> SineMoments {
         let w = SKEW_WEIGHT;
@@ -247,6 +334,64 @@ impl SkewedSineLobe {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Near a pole the truncation moves a lobe's mean toward the equator; the matched lobe's
+    /// truncated moments are the target's (two deviations or more from the pole), the plain
+    /// split's are not. `truncated_moments` is
+    /// checked against the lobe's own density integrated over [−1, 1].
+    #[test]
+    fn matched_lobe_has_the_target_moments_after_its_truncation() {
+        let target = SkewedSine {
+            moments: SineMoments {
+                mean: -0.93,
+                variance: 0.03f64.powi(2),
+            },
+            skewness: 0.2,
+        };
+        let integrated = |lobe: &SkewedSineLobe| {
+            let n = 200_000;
+            let mut m = [0.0f64; 3];
+            for k in 0..n {
+                let x = -1.0 + 2.0 * (k as f64 + 0.5) / n as f64;
+                let f = lobe.eval(x) * 2.0 / n as f64;
+                m = [m[0] + f, m[1] + f * x, m[2] + f * x * x];
+            }
+            SineMoments {
+                mean: m[1] / m[0],
+                variance: m[2] / m[0] - (m[1] / m[0]).powi(2),
+            }
+        };
+        let plain = SkewedSineLobe::new(target);
+        let matched = SkewedSineLobe::matching(target);
+        for lobe in [&plain, &matched] {
+            let (closed, summed) = (lobe.truncated_moments(), integrated(lobe));
+            assert!(
+                (closed.mean - summed.mean).abs() < 1e-7,
+                "{closed:?} {summed:?}"
+            );
+            assert!((closed.variance / summed.variance - 1.0).abs() < 1e-4);
+        }
+        let got = integrated(&matched);
+        assert!((got.mean - target.moments.mean).abs() < 2e-6, "{got:?}");
+        assert!(
+            (got.variance / target.moments.variance - 1.0).abs() < 2e-3,
+            "{got:?}"
+        );
+        let missed = integrated(&plain);
+        assert!(
+            (missed.mean - target.moments.mean).abs() > 1e-4,
+            "{missed:?}"
+        );
+        // Within one deviation of the pole the match is the target itself.
+        let near = SkewedSine {
+            moments: SineMoments {
+                mean: -0.98,
+                ..target.moments
+            },
+            ..target
+        };
+        assert_eq!(SkewedSineLobe::matched(near), near.moments);
+    }
     use crate::special::GaussLegendre;
 
     /// Lobes in the middle of [−1, 1], at an end, past it and wide enough to meet both.
