@@ -155,7 +155,7 @@ fn end_distances(mean: f64, inv_sd: f64) -> [f64; 2] {
     [(1.0 - mean.abs()) * inv_sd, (1.0 + mean.abs()) * inv_sd]
 }
 
-/// Fixed-point steps of [`SkewedSineLobe::matching`].
+/// Secant steps of [`SkewedSineLobe::matched`].
 const MATCHING_STEPS: usize = 8;
 /// Deviations from the nearer pole beyond which [`SkewedSineLobe::matched`] matches in full;
 /// within one it gives the target itself.
@@ -233,16 +233,11 @@ impl SkewedSineLobe {
         }
     }
 
-    /// The lobe of `skewed`'s split whose truncation to [−1, 1] has `skewed`'s mean and
-    /// variance: near a pole the ends cut a Gaussian's tail off and move the truncated mean
-    /// toward the equator, so the untruncated mean and deviation are set apart from the
-    /// target by what the cut takes ([`Self::truncated_moments`], a few fixed-point steps).
-    pub fn matching(skewed: SkewedSine) -> Self {
-        let SineMoments { mean, variance } = Self::matched(skewed);
-        Self::split(mean, variance.sqrt(), SkewSplit::new(skewed.skewness))
-    }
-
-    /// The untruncated mean and variance that [`Self::matching`] splits.
+    /// The untruncated mean and variance whose lobe, split as `skewed`'s skewness says and
+    /// truncated to [−1, 1], has `skewed`'s mean and variance: near a pole the ends cut a
+    /// Gaussian's tail off and move the truncated mean toward the equator, so the untruncated
+    /// mean and deviation are set apart from the target by what the cut takes
+    /// ([`Self::truncated_moments`], secant steps).
     pub fn matched(skewed: SkewedSine) -> SineMoments {
         let target = skewed.moments;
         let split = SkewSplit::new(skewed.skewness);
@@ -257,14 +252,15 @@ impl SkewedSineLobe {
             if !(got[1] > 0.0 && got[0].is_finite()) {
                 break;
             }
-            let slope = |l: usize, at: f64, last: Option<([f64; 2], [f64; 2])>| {
-                let ([x, _], [y, _]) = last.map(|(p, g)| ([p[l], 0.0], [g[l], 0.0]))?;
-                let s = (got[l] - y) / (at - x);
+            let at = [mean, sd];
+            let slope = |l: usize| {
+                let (before, got_before) = last?;
+                let s = (got[l] - got_before[l]) / (at[l] - before[l]);
                 (s.is_finite() && s > 0.1).then_some(s)
             };
-            let mean_slope = slope(0, mean, last).unwrap_or(1.0);
-            let sd_slope = slope(1, sd, last).unwrap_or(got[1] / sd);
-            last = Some(([mean, sd], got));
+            let mean_slope = slope(0).unwrap_or(1.0);
+            let sd_slope = slope(1).unwrap_or(got[1] / sd);
+            last = Some((at, got));
             mean = (mean + (target.mean - got[0]) / mean_slope).clamp(-1.0, 1.0);
             sd = (sd + (target_sd - got[1]) / sd_slope).max(0.25 * target_sd);
         }
@@ -334,11 +330,12 @@ impl SkewedSineLobe {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::special::GaussLegendre;
 
     /// Near a pole the truncation moves a lobe's mean toward the equator; the matched lobe's
     /// truncated moments are the target's (two deviations or more from the pole), the plain
-    /// split's are not. `truncated_moments` is
-    /// checked against the lobe's own density integrated over [−1, 1].
+    /// split's are not. `truncated_moments` is checked against the lobe's own density
+    /// integrated over [−1, 1].
     #[test]
     fn matched_lobe_has_the_target_moments_after_its_truncation() {
         let target = SkewedSine {
@@ -362,7 +359,10 @@ mod tests {
             }
         };
         let plain = SkewedSineLobe::new(target);
-        let matched = SkewedSineLobe::matching(target);
+        let matched = SkewedSineLobe::new(SkewedSine {
+            moments: SkewedSineLobe::matched(target),
+            ..target
+        });
         for lobe in [&plain, &matched] {
             let (closed, summed) = (lobe.truncated_moments(), integrated(lobe));
             assert!(
@@ -392,7 +392,6 @@ mod tests {
         };
         assert_eq!(SkewedSineLobe::matched(near), near.moments);
     }
-    use crate::special::GaussLegendre;
 
     /// Lobes in the middle of [−1, 1], at an end, past it and wide enough to meet both.
     fn lobes() -> Vec<SineLobe> {

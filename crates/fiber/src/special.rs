@@ -77,7 +77,7 @@ fn horner(c: &[f64], x: f64) -> f64 {
     rest.iter().rev().fold(*last, |acc, c| acc * x + c)
 }
 
-/// Σ cₖ xᵏ (k < 9) by Estrin's scheme (Estrin 1960), for two or four lanes: pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those
+/// Σ cₖ xᵏ (k < 9) by Estrin's scheme (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those
 /// in x², then x⁴ and x⁸: a dependency chain of four multiply-adds where Horner's is eight,
 /// for a few more multiplications. The scalar functions on every model's critical path
 /// ([`sin_cos_quadrant`], [`asin_fast`], [`atan2_fast`], [`ln_fast`], [`exp_fast`]) take it,
@@ -608,8 +608,8 @@ macro_rules! f64_lanes {
 }
 f64_lanes!(f64x2, f64x4);
 
-/// Σ cₖ xᵏ (k < 8) in each lane, lowest coefficient first, by Estrin's scheme
-/// (Estrin 1960), for two or four lanes: pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then in x⁴, three levels
+/// Σ cₖ xᵏ (k < 8) in each of two or four lanes, lowest coefficient first, by Estrin's scheme
+/// (Estrin 1960): pairs c₂ₖ + c₂ₖ₊₁x, then pairs of those in x², then in x⁴, three levels
 /// where Horner's chain is seven multiply-adds long (the lanes' latency, not their count,
 /// bounds the models' M). [`estrin8_lanes_f32`] is the same in single precision, and
 /// [`estrin7_lanes_f32`] and [`estrin9_lanes_f32`] take one coefficient fewer and one more, so

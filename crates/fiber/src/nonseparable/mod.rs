@@ -493,7 +493,7 @@ impl NonSeparable {
         }
         let column = SkewedSineLobe::matched(SkewedSine {
             moments: table.column_sine(theta_i, phi),
-            skewness: cones::tt_skewness(theta_i, alpha, eta, beta),
+            skewness: self.tt_skewness(theta_i),
         });
         if open >= 1.0 {
             return column;
@@ -831,8 +831,8 @@ const OPEN_BISECTIONS: usize = 30;
 /// The share of θ_i ± [`OPEN_BAND`]/2 where TT's smooth path at h = 0 leaves: 1 well inside
 /// the open inclinations, 0 well inside the blocked ones, smoothstep (3s² − 2s³ of the linear
 /// share s) across the edge between them (found by bisection; the band is taken to hold one
-/// edge at most). Kept for the last
-/// arguments on each thread (the lobe table asks along a row of one θ_i).
+/// edge at most). Kept for the last arguments on each thread (the lobe table asks along a row
+/// of one θ_i).
 fn open_share(theta_i: f64, alpha: f64, eta: f64) -> f64 {
     type Last = Option<([f64; 3], f64)>;
     thread_local! {
@@ -991,8 +991,8 @@ mod tests {
     /// cone within 6.2e-3 rad, 1.0e-5 on average; its width within 2.4e-2, 2.4e-4 on average,
     /// the worst near grazing incidence and where the columns' lobe passes to the cut one over
     /// `OPEN_BAND` (before [`open_share`] took a smoothstep there, 5.5e-2; departure 12's
-    /// kinks, where its exit nears the critical angle, are still there too). The tilted TRT lobe averages over
-    /// the offsets whose smooth path leaves, which start and stop leaving at kinks in θ_i
+    /// kinks, where its exit nears the critical angle, are still there too). The tilted TRT
+    /// lobe averages over the offsets whose smooth path leaves, which start and stop leaving at kinks in θ_i
     /// (departure 16), and is cut by the paths that leave at h = 0 on a grid of tilts
     /// (departure 17), whose share narrows it up to a kink: its cone within 1.8e-3 rad
     /// (3.5e-5 on average), its width within 2.3e-2 (3.9e-4 on average; it was 1e-6 at h = 0
