@@ -47,6 +47,17 @@ pub struct SkewedSine {
     pub skewness: f64,
 }
 
+impl SkewedSine {
+    /// [`SineMoments::mixed_with`], the skewness blended linearly: not the mixture's own, but
+    /// continuous in `weight`, which is what a blend across a band of θ_i needs.
+    pub fn mixed_with(self, other: SkewedSine, weight: f64) -> SkewedSine {
+        SkewedSine {
+            moments: self.moments.mixed_with(other.moments, weight),
+            skewness: weight * self.skewness + (1.0 - weight) * other.skewness,
+        }
+    }
+}
+
 /// Standard deviations between the mean and the nearer end of [−1, 1] beyond which the
 /// truncation is below f64's resolution of Z (Φ(−8.3) = 5e-17).
 const UNTRUNCATED: f64 = 8.3;
@@ -163,9 +174,15 @@ const MATCHED_FROM: f64 = 2.0;
 
 /// The weight of [`SkewedSineLobe`]'s second part, on the side of its skew.
 const SKEW_WEIGHT: f64 = 0.2;
-/// The largest skewness [`SkewedSineLobe`] takes: there its parts keep a quarter of the
-/// variance each (|γ| < 1.5 leaves them any).
-const LARGEST_SKEWNESS: f64 = 1.0;
+/// The largest skewness [`SkewedSineLobe`] takes: the most at which it stays log-concave, one
+/// hump with no shoulder. Two Gaussians of one width σ_c whose means are d apart make a
+/// log-concave mixture for any weights exactly when d ≤ 2σ_c ((ln M)″ = (w₁w₂d²/σ_c² − 1)/σ_c²
+/// with w₁, w₂ the parts' shares at x, whose product reaches ¼); with σ_c² = σ² − w(1 − w)d²
+/// that is d² = 4σ²/(1 + 4w(1 − w)), γ = w(1 − w)(1 − 2w)(d/σ)³ (`largest_skew_is_log_concave`).
+/// The light's own skew is larger at grazing incidence (a sine skewness of 0.5–0.6 at θ_i =
+/// 1.1–1.3); a split that carries it shows its second part as a shoulder on the lobe's flank,
+/// which the simulation does not have, and is further from it than this (departure 23).
+const LARGEST_SKEWNESS: f64 = 0.365_675_15;
 
 /// How [`SkewedSineLobe`] splits a lobe of standard deviation σ for a skewness γ, in units of
 /// σ: the distance d/σ between its parts' means and their standard deviation σ_c/σ. It
@@ -181,10 +198,18 @@ impl SkewSplit {
     pub fn new(skewness: f64) -> Self {
         let gamma = skewness.clamp(-LARGEST_SKEWNESS, LARGEST_SKEWNESS);
         let w = SKEW_WEIGHT;
-        let offset = (gamma / (w * (1.0 - w) * (1.0 - 2.0 * w))).cbrt();
+        Self::from_offset((gamma / (w * (1.0 - w) * (1.0 - 2.0 * w))).cbrt())
+    }
+
+    /// The split whose parts' means are `offset` deviations apart, their deviation what keeps
+    /// the lobe's variance: a table that blends offsets (`lobe_table.rs`) takes its splits
+    /// from here, so that a blend of two splits keeps the variance too.
+    #[inline]
+    pub fn from_offset(offset: f64) -> Self {
+        let w = SKEW_WEIGHT;
         Self {
             offset,
-            part_sd: (1.0 - w * (1.0 - w) * offset * offset).sqrt(),
+            part_sd: (1.0 - w * (1.0 - w) * offset * offset).max(0.0).sqrt(),
         }
     }
 }
@@ -513,11 +538,11 @@ mod tests {
     /// The skewed lobes of [`skewed_lobe_keeps_its_moments`] and one cut by the pole.
     fn skewed_lobes() -> Vec<(SkewedSine, SkewedSineLobe)> {
         [
-            (-0.5, 0.03, -0.8),
+            (-0.5, 0.03, -LARGEST_SKEWNESS),
             (-0.5, 0.03, -0.3),
             (-0.5, 0.03, 0.0),
-            (0.2, 0.05, 0.4),
-            (0.2, 0.05, 1.0),
+            (0.2, 0.05, 0.3),
+            (0.2, 0.05, LARGEST_SKEWNESS),
             (-0.97, 0.03, -0.5),
         ]
         .into_iter()
@@ -580,6 +605,47 @@ mod tests {
             skewness: LARGEST_SKEWNESS,
         });
         assert_eq!(clamped, largest);
+    }
+
+    /// At the largest skewness the parts' means are two of their deviations apart, where the
+    /// mixture stops being log-concave: (ln M)″ ≤ 0 everywhere there, and not past it.
+    #[test]
+    fn largest_skew_is_log_concave() {
+        let split = SkewSplit::new(LARGEST_SKEWNESS);
+        assert!(
+            (split.offset / split.part_sd - 2.0).abs() < 1e-7,
+            "{split:?}"
+        );
+        let most_curved = |skewness: f64| {
+            let lobe = SkewedSineLobe::new(SkewedSine {
+                moments: SineMoments {
+                    mean: 0.0,
+                    variance: 1e-4,
+                },
+                skewness,
+            });
+            let ln = |x: f64| lobe.eval(x).ln();
+            let h = 1e-4;
+            (-400..=400)
+                .map(|k| k as f64 * 1e-4)
+                .map(|x| (ln(x + h) - 2.0 * ln(x) + ln(x - h)) / (h * h))
+                .fold(f64::MIN, f64::max)
+        };
+        assert!(
+            most_curved(LARGEST_SKEWNESS) < 1e-3,
+            "{}",
+            most_curved(LARGEST_SKEWNESS)
+        );
+        // Past the clamp the lobe stays the clamped one; its split, built directly, bulges.
+        let beyond = SkewSplit::from_offset(1.2 * split.offset);
+        let lobe = SkewedSineLobe::split(0.0, 0.01, beyond);
+        let ln = |x: f64| lobe.eval(x).ln();
+        let h = 1e-4;
+        let bulge = (-400..=400)
+            .map(|k| k as f64 * 1e-4)
+            .map(|x| (ln(x + h) - 2.0 * ln(x) + ln(x - h)) / (h * h))
+            .fold(f64::MIN, f64::max);
+        assert!(bulge > 100.0, "{bulge}");
     }
 
     /// The skewed lobe integrates to 1 where the pole cuts it, and its draws follow it.

@@ -26,68 +26,66 @@ const GRAZING: f64 = 1e-4;
 /// A lobe's shape as the table holds it: the exit's sine x and its width (module docs).
 pub type Shape = [f64; 2];
 
-/// The [`Shape`] of TT over (θ_i, |φ|) and of TRT over θ_i.
+/// TT's lobe at one (θ_i, |φ|): its [`Shape`] and how the skewness of its exit sine splits it
+/// (the tilted model's; no split in the paper's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TtShape {
+    pub shape: Shape,
+    pub split: SkewSplit,
+}
+
+/// The [`TtShape`] of TT over (θ_i, |φ|) and the [`Shape`] of TRT over θ_i.
 #[derive(Clone, Debug)]
 pub struct LobeTable {
-    tt: Vec<[f64; 2]>,
-    /// How the skewness of TT's exit sine splits its lobe, over θ_i (the tilted model's; no
-    /// split in the paper's).
-    tt_split: Vec<SkewSplit>,
+    /// Per cell x, width and the split's offset ([`SkewSplit::from_offset`]).
+    tt: Vec<[f64; 3]>,
     trt: Vec<[f64; 2]>,
 }
 
 impl LobeTable {
-    /// Fills the table from `tt(θ_i, φ)`, TT's shapes (even in φ), `tt_skewness(θ_i)` and
-    /// `trt(θ_i)`, rows of θ_i shared among the available cores. A row's skewness is asked for
-    /// right after its shapes, which find the same axial cut (`cones::tt_skewness`).
+    /// Fills the table from `tt(θ_i, φ)`, TT's lobes (even in φ), and `trt(θ_i)`, rows of θ_i
+    /// shared among the available cores.
     pub fn build(
-        tt: impl Fn(f64, f64) -> Shape + Sync,
-        tt_skewness: impl Fn(f64) -> f64 + Sync,
+        tt: impl Fn(f64, f64) -> TtShape + Sync,
         trt: impl Fn(f64) -> Shape + Sync,
     ) -> Self {
-        let mut rows = vec![([[0.0; 2]; PHI_NODES], SkewSplit::new(0.0)); THETA_I_NODES];
+        let mut rows = vec![[[0.0; 3]; PHI_NODES]; THETA_I_NODES];
         fill_rows(&mut rows, 1, |i, row| {
             let theta_i = theta_i_at(i);
-            let (shapes, split) = &mut row[0];
-            for (k, cell) in shapes.iter_mut().enumerate() {
-                *cell = tt(theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
+            for (k, cell) in row[0].iter_mut().enumerate() {
+                let TtShape {
+                    shape: [x, w],
+                    split,
+                } = tt(theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
+                *cell = [x, w, split.offset];
             }
-            *split = SkewSplit::new(tt_skewness(theta_i));
         });
         let mut trt_cells = vec![[0.0; 2]; THETA_I_NODES];
         fill_rows(&mut trt_cells, 1, |i, cell| cell[0] = trt(theta_i_at(i)));
         Self {
-            tt: rows.iter().flat_map(|(shapes, _)| *shapes).collect(),
-            tt_split: rows.iter().map(|&(_, split)| split).collect(),
+            tt: rows.into_iter().flatten().collect(),
             trt: trt_cells,
         }
     }
 
-    /// How TT's skewness splits its lobe at θ_i, linear.
+    /// TT's lobe at (θ_i, φ), bilinear in x, the width and the split's offset.
     #[inline]
-    pub fn tt_split(&self, theta_i: f64) -> SkewSplit {
-        let (i0, fi) = theta_i_cell(theta_i);
-        let fi = fi as f64;
-        let (a, b) = (self.tt_split[i0], self.tt_split[i0 + 1]);
-        SkewSplit {
-            offset: a.offset + fi * (b.offset - a.offset),
-            part_sd: a.part_sd + fi * (b.part_sd - a.part_sd),
-        }
-    }
-
-    /// TT's shape at (θ_i, φ), bilinear.
-    #[inline]
-    pub fn tt(&self, theta_i: f64, phi: f64) -> Shape {
+    pub fn tt(&self, theta_i: f64, phi: f64) -> TtShape {
         let (i0, fi) = theta_i_cell(theta_i);
         let (k0, fk) = locate(phi.abs() / PI, PHI_NODES);
         let (fi, fk) = (fi as f64, fk as f64);
         let at = i0 * PHI_NODES + k0;
         let next = at + PHI_NODES;
-        let lerp =
-            |a: [f64; 2], b: [f64; 2], f: f64| [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];
+        let lerp = |a: [f64; 3], b: [f64; 3], f: f64| -> [f64; 3] {
+            std::array::from_fn(|l| a[l] + f * (b[l] - a[l]))
+        };
         let low = lerp(self.tt[at], self.tt[at + 1], fk);
         let high = lerp(self.tt[next], self.tt[next + 1], fk);
-        lerp(low, high, fi)
+        let [x, w, offset] = lerp(low, high, fi);
+        TtShape {
+            shape: [x, w],
+            split: SkewSplit::from_offset(offset),
+        }
     }
 
     /// TRT's shape at θ_i, linear.
