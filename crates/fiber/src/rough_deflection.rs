@@ -103,8 +103,9 @@ struct Slope {
 }
 
 /// `n` micro-normals of a surface of Beckmann roughness β (slopes normal, variance β²/2 per
-/// axis) as a quadrature: the rank-1 lattice u_k = ((k + ½)/n, {k g / n + 1/2n}), g the
-/// nearest integer to n/φ, mapped through the normal quantile of a law [`WIDENING`] times
+/// axis) as a quadrature: the rank-1 lattice (Sloan & Joe 1994) u_k = {(k + ½)(1, g)/n}, g
+/// the nearest integer to n/φ, shifted by half a step so that it is centrally symmetric
+/// (u_{n−1−k} = 1 − u_k), mapped through the normal quantile of a law [`WIDENING`] times
 /// wider, each weighted by the ratio of the slopes' density to that law's, the weights scaled
 /// to a mean of 1. A product grid of equal-probability midpoints (departure 22's rule) cut the
 /// tails at Φ⁻¹(1/2n) per axis and missed TT's skewness by half (departure 23).
