@@ -12,7 +12,7 @@
 //! `crates/validate/tests/rough_tt_azimuth.rs`.
 //!
 //! The path: the entry's micro-normals refract the light into a spread of chords (a lattice
-//! of slopes, [`lattice_slopes`], each with Walter et al. 2007's transmission weight, as
+//! of slopes, `lattice_slopes`, each with Walter et al. 2007's transmission weight, as
 //! [`crate::rough_interface`] takes them); each chord meets the exit's scale
 //! ([`AtScale::inside`]), whose micro-normals refract it out on a finer lattice. Each exit's
 //! in-plane angles give its Φ = π + γ′ − γ_i + γ′ − γ_o, signed as [`crate::tilted_deflection`]
@@ -50,7 +50,7 @@ pub const TABLE_RULE: Rule = Rule {
 
 /// Micro-normals per event of a quadrature, entry × exit pairs: each set the rank-1 lattice
 /// of that many points in the unit square whose generator is the nearest integer to n/φ (the
-/// Fibonacci lattice where n is a Fibonacci number), mapped to slopes by [`lattice_slopes`].
+/// Fibonacci lattice where n is a Fibonacci number), mapped to slopes by `lattice_slopes`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Rule {
     pub entry: usize,

@@ -37,8 +37,9 @@ pub struct TtShape {
 /// The [`TtShape`] of TT over (θ_i, |φ|) and the [`Shape`] of TRT over θ_i.
 #[derive(Clone, Debug)]
 pub struct LobeTable {
-    /// Per cell x, width and the split's offset ([`SkewSplit::from_offset`]).
-    tt: Vec<[f64; 3]>,
+    /// Per cell x, width, and the split's mixture offset, two-piece asymmetry and two-piece
+    /// share ([`SkewSplit::from_channels`]).
+    tt: Vec<[f64; 5]>,
     trt: Vec<[f64; 2]>,
 }
 
@@ -49,7 +50,7 @@ impl LobeTable {
         tt: impl Fn(f64, f64) -> TtShape + Sync,
         trt: impl Fn(f64) -> Shape + Sync,
     ) -> Self {
-        let mut rows = vec![[[0.0; 3]; PHI_NODES]; THETA_I_NODES];
+        let mut rows = vec![[[0.0; 5]; PHI_NODES]; THETA_I_NODES];
         fill_rows(&mut rows, 1, |i, row| {
             let theta_i = theta_i_at(i);
             for (k, cell) in row[0].iter_mut().enumerate() {
@@ -57,7 +58,7 @@ impl LobeTable {
                     shape: [x, w],
                     split,
                 } = tt(theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
-                *cell = [x, w, split.offset];
+                *cell = [x, w, split.offset, split.asymmetry, split.two_piece];
             }
         });
         let mut trt_cells = vec![[0.0; 2]; THETA_I_NODES];
@@ -68,7 +69,7 @@ impl LobeTable {
         }
     }
 
-    /// TT's lobe at (θ_i, φ), bilinear in x, the width and the split's offset.
+    /// TT's lobe at (θ_i, φ), bilinear in every channel.
     #[inline]
     pub fn tt(&self, theta_i: f64, phi: f64) -> TtShape {
         let (i0, fi) = theta_i_cell(theta_i);
@@ -76,15 +77,15 @@ impl LobeTable {
         let (fi, fk) = (fi as f64, fk as f64);
         let at = i0 * PHI_NODES + k0;
         let next = at + PHI_NODES;
-        let lerp = |a: [f64; 3], b: [f64; 3], f: f64| -> [f64; 3] {
+        let lerp = |a: [f64; 5], b: [f64; 5], f: f64| -> [f64; 5] {
             std::array::from_fn(|l| a[l] + f * (b[l] - a[l]))
         };
         let low = lerp(self.tt[at], self.tt[at + 1], fk);
         let high = lerp(self.tt[next], self.tt[next + 1], fk);
-        let [x, w, offset] = lerp(low, high, fi);
+        let [x, w, offset, asymmetry, share] = lerp(low, high, fi);
         TtShape {
             shape: [x, w],
-            split: SkewSplit::from_offset(offset),
+            split: SkewSplit::from_channels(offset, asymmetry, share),
         }
     }
 

@@ -59,7 +59,8 @@
 //!   by the skewness of the light that reaches each column through the rough surface
 //!   ([`crate::rough_deflection::RoughTtTable::column_sine`]; departure 23), or, where the
 //!   smooth path is blocked, the skewness the cut at h = 0 finds ([`cones::tt_skewness`];
-//!   departure 19), either held to what a log-concave lobe can carry.
+//!   departure 19); past what a log-concave mixture of two Gaussians carries the lobe passes
+//!   to a two-piece normal (departure 24).
 //! - TRT's width is the spread of its exit through the tilted scales over the offsets that
 //!   leave, weighted by A(2, h), about the cone at h = 0 ([`cones::trt_lobe_tilted`]), where
 //!   §2.5's D_TRT is an untilted fiber's at h = 0 (departure 16); then moved and narrowed as
@@ -1003,7 +1004,7 @@ mod tests {
     /// 2.3e-3 (the paper's TT) and 1e-6 (TRT). The tilted TT lobe, Gaussian in its exit sine
     /// (departure 19), is compared as the cone of the same moments ([`cone_of_sine_lobe`])
     /// against its exact twin ([`NonSeparable::tt_sine_lobe_exact`], no lobe-table read): its
-    /// cone within 6.2e-3 rad, 1.3e-5 on average; its width within 2.0e-2, 2.0e-4 on average,
+    /// cone within 4.6e-3 rad, 1.3e-5 on average; its width within 2.8e-2, 1.4e-4 on average,
     /// the worst near grazing incidence and where the columns' lobe passes to the cut one over
     /// `OPEN_BAND` (before [`open_share`] took a smoothstep there, 5.5e-2; departure 12's
     /// kinks, where its exit nears the critical angle, are still there too). The tilted TRT
@@ -1067,7 +1068,7 @@ mod tests {
             );
             assert!(worst[0] < 0.01 && worst[1] < 4e-3, "{worst:?}");
             assert!(mean[0] < 4e-5 && mean[1] < 5e-5, "{mean:?}");
-            assert!(width[0] < 0.03 && width[1] < 0.05, "{width:?}");
+            assert!(width[0] < 0.04 && width[1] < 0.05, "{width:?}");
             assert!(
                 width_mean[0] < 5e-4 && width_mean[1] < 5e-4,
                 "{width_mean:?}"
