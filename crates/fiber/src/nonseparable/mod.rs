@@ -66,8 +66,11 @@
 //!   §2.5's D_TRT is an untilted fiber's at h = 0 (departure 16); then moved and narrowed as
 //!   the rough exit cuts it near grazing incidence, as TT's is ([`cones::trt_axial_cut`],
 //!   departure 17).
-//! - TT's lobe is cut where a rough exit meets the surface at grazing incidence
-//!   ([`cones::tt_lobe_rough`]): narrower and further from the pole than the first order.
+//! - TT's lobe is the light the rough surface lets through to each column at every
+//!   inclination, where the smooth path at h = 0 is blocked too (departure 25); until the
+//!   quadrature reached the slopes' tails it was, there, the lobe a rough exit cuts at
+//!   grazing incidence ([`cones::tt_lobe_rough`]), narrower and further from the pole than
+//!   the first order.
 //! - N_TT and N_TRT are centred on the exit azimuth through the tilted scales
 //!   ([`crate::tilted_deflection`]), not Bravais' Φ(p, h): a tilt changes the in-plane angle
 //!   of every chord and of the exit, and the exit's inclination, which sets the θ_d where
@@ -122,7 +125,7 @@ use crate::sine_lobe::{SineMoments, SkewSplit, SkewedSine, SkewedSineLobe};
 use crate::special::{asin_fast, cos_quadrant, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
-use crate::tilted_deflection::{tilted_exit, tilted_tt_offset};
+use crate::tilted_deflection::tilted_tt_offset;
 use crate::tilted_mirror::{MirrorOffset, tilted_mirror, tilted_mirror_offsets};
 pub use cones::{
     CutLobe, cone_r, cone_trt, cone_tt, cone_tt_tilted, first_order_tt, trt_exit, tt_exit,
@@ -481,41 +484,30 @@ impl NonSeparable {
     }
 
     /// The tilted model's TT lobe at (θ_i, φ) without the lobe table, as the mean, variance
-    /// and skewness of its exit sine: over the light of every offset that reaches φ through
-    /// the rough surface ([`crate::rough_deflection::RoughTtTable::column_sine`], its skewness
-    /// the column's own since departure 23), or, where the smooth path at h = 0 is blocked,
-    /// the lobe as a rough exit cuts it ([`tt_lobe_rough`]) at the offset whose exit leaves at
-    /// φ, with the cut's skewness ([`cones::tt_skewness`]). The columns' mean and variance are
-    /// set apart from the moments they give so that the sine lobe has those moments after its
-    /// truncation to [−1, 1] ([`SkewedSineLobe::matched`]; departure 22).
+    /// and skewness of its exit sine over the light of every offset that reaches φ through the
+    /// rough surface ([`crate::rough_deflection::RoughTtTable::column_sine`]), at every
+    /// inclination: where the smooth path at h = 0 is blocked too, the light that leaves comes
+    /// from the slopes' tails, which the widened lattice reaches (departure 25; before it, the
+    /// lobe there was the one a rough exit cuts at the offset whose exit leaves at φ,
+    /// [`tt_lobe_rough`]). The columns' mean and variance are set apart from the moments they
+    /// give so that the sine lobe has those moments after its truncation to [−1, 1]
+    /// ([`SkewedSineLobe::matched`]; departure 22). The tilted model always has the columns;
+    /// without them (a model built otherwise) the lobe is the cut one.
     fn tt_moments(&self, theta_i: f64, phi: f64) -> SkewedSine {
-        let FiberParams {
-            eta, beta, alpha, ..
-        } = self.params;
-        let cut = || SkewedSine {
-            moments: tt_lobe_rough(theta_i, alpha, eta, beta, self.tt_offset(theta_i, phi)),
-            skewness: self.tt_skewness(theta_i),
-        };
-        // The light that reaches φ, through the rough surface (departure 21), where the smooth
-        // path at h = 0 leaves: where it does not, the light that leaves comes from the tails
-        // of the slopes, which the quadrature's rule does not reach. Between the two, over
-        // OPEN_BAND of θ_i, the mixture of both lobes, so that the model is continuous in θ_i.
         let Some(table) = &self.azimuthal().rough_tt else {
-            return cut();
+            let FiberParams {
+                eta, beta, alpha, ..
+            } = self.params;
+            return SkewedSine {
+                moments: tt_lobe_rough(theta_i, alpha, eta, beta, self.tt_offset(theta_i, phi)),
+                skewness: self.tt_skewness(theta_i),
+            };
         };
-        let open = open_share(theta_i, alpha, eta);
-        if open <= 0.0 {
-            return cut();
-        }
         let column = table.column_sine(theta_i, phi);
-        let column = SkewedSine {
+        SkewedSine {
             moments: SkewedSineLobe::matched(column),
             skewness: column.skewness,
-        };
-        if open >= 1.0 {
-            return column;
         }
-        column.mixed_with(cut(), open)
     }
 
     /// TRT's (p = 2) or the paper's TT lobe shape as the lobe table holds it ([`lobe_table`]):
@@ -838,55 +830,6 @@ impl NonSeparable {
     }
 }
 
-/// The width in θ_i of the band over which TT's lobe passes from the rough surface's columns to
-/// the cut lobe where the smooth path at h = 0 becomes blocked.
-const OPEN_BAND: f64 = 0.08;
-/// Bisection steps of [`open_share`]: the edge to 1e-10 rad.
-const OPEN_BISECTIONS: usize = 30;
-
-/// The share of θ_i ± [`OPEN_BAND`]/2 where TT's smooth path at h = 0 leaves: 1 well inside
-/// the open inclinations, 0 well inside the blocked ones, smoothstep (3s² − 2s³ of the linear
-/// share s) across the edge between them (found by bisection; the band is taken to hold one
-/// edge at most). Kept for the last arguments on each thread (the lobe table asks along a row
-/// of one θ_i).
-fn open_share(theta_i: f64, alpha: f64, eta: f64) -> f64 {
-    type Last = Option<([f64; 3], f64)>;
-    thread_local! {
-        static LAST: std::cell::Cell<Last> = const { std::cell::Cell::new(None) };
-    }
-    let key = [theta_i, alpha, eta];
-    LAST.with(|last| match last.get() {
-        Some((k, share)) if k == key => share,
-        _ => {
-            let edge = std::f64::consts::FRAC_PI_2 - 1e-9;
-            let open = |t: f64| tilted_exit(1, t.clamp(-edge, edge), alpha, eta, 0.0).is_some();
-            let (lo, hi) = (theta_i - 0.5 * OPEN_BAND, theta_i + 0.5 * OPEN_BAND);
-            let share = match (open(lo), open(hi)) {
-                (true, true) => 1.0,
-                (false, false) => 0.0,
-                (lo_open, _) => {
-                    let (mut a, mut b) = (lo, hi);
-                    for _ in 0..OPEN_BISECTIONS {
-                        let mid = 0.5 * (a + b);
-                        if open(mid) == lo_open {
-                            a = mid;
-                        } else {
-                            b = mid;
-                        }
-                    }
-                    let cut = (0.5 * (a + b) - lo) / OPEN_BAND;
-                    let share = if lo_open { cut } else { 1.0 - cut };
-                    // Smoothstep: the mixture's moments keep their slope across the band's
-                    // ends, where the lobe table's linear reading would cut the corner.
-                    share * share * (3.0 - 2.0 * share)
-                }
-            };
-            last.set(Some((key, share)));
-            share
-        }
-    })
-}
-
 /// The von Mises–Fisher lobe with a sine lobe's mean and variance of sin θ_o to first order:
 /// where [`NonSeparable::longitudinal`] describes the tilted model's TT lobe, whose shape is
 /// the [`SkewedSineLobe`], by a cone and a width in θ.
@@ -1004,10 +947,9 @@ mod tests {
     /// 2.3e-3 (the paper's TT) and 1e-6 (TRT). The tilted TT lobe, Gaussian in its exit sine
     /// (departure 19), is compared as the cone of the same moments ([`cone_of_sine_lobe`])
     /// against its exact twin ([`NonSeparable::tt_sine_lobe_exact`], no lobe-table read): its
-    /// cone within 4.6e-3 rad, 1.3e-5 on average; its width within 2.8e-2, 1.4e-4 on average,
-    /// the worst near grazing incidence and where the columns' lobe passes to the cut one over
-    /// `OPEN_BAND` (before [`open_share`] took a smoothstep there, 5.5e-2; departure 12's
-    /// kinks, where its exit nears the critical angle, are still there too). The tilted TRT
+    /// cone within 7.9e-3 rad, 9e-6 on average; its width within 3.5e-2, 8.8e-5 on average,
+    /// the worst near grazing incidence, where the columns (read there too since departure 25)
+    /// change fastest with θ_i. The tilted TRT
     /// lobe averages over the offsets whose smooth path leaves, which start and stop leaving at kinks in θ_i
     /// (departure 16), and is cut by the paths that leave at h = 0 on a grid of tilts
     /// (departure 17), whose share narrows it up to a kink: its cone within 1.8e-3 rad
