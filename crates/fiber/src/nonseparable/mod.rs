@@ -57,10 +57,10 @@
 //!   the lobe is Gaussian there to first order, and the arcsine skews θ_o toward the pole as
 //!   the simulation's TT is; the second order and the rough exit's cut skew the sine itself,
 //!   by the skewness of the light that reaches each column through the rough surface
-//!   ([`crate::rough_deflection::RoughTtTable::column_sine`]; departure 23), or, where the
-//!   smooth path is blocked, the skewness the cut at h = 0 finds ([`cones::tt_skewness`];
-//!   departure 19); past what a log-concave mixture of two Gaussians carries the lobe passes
-//!   to a two-piece normal (departure 24).
+//!   ([`crate::rough_deflection::RoughTtTable::column_sine`]; departure 23, where departure
+//!   19 took the skewness the cut at h = 0 finds, [`cones::tt_skewness`]); past what a
+//!   log-concave mixture of two Gaussians carries the lobe passes to a two-piece normal
+//!   (departure 24).
 //! - TRT's width is the spread of its exit through the tilted scales over the offsets that
 //!   leave, weighted by A(2, h), about the cone at h = 0 ([`cones::trt_lobe_tilted`]), where
 //!   §2.5's D_TRT is an untilted fiber's at h = 0 (departure 16); then moved and narrowed as
