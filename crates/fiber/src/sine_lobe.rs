@@ -27,35 +27,11 @@ pub struct SineMoments {
     pub variance: f64,
 }
 
-impl SineMoments {
-    /// The moments of the mixture that takes this share `weight` ∈ [0, 1] and `other` the
-    /// rest: the means blended, the variances blended plus the spread of the means.
-    pub fn mixed_with(self, other: SineMoments, weight: f64) -> SineMoments {
-        let (w, v) = (weight, 1.0 - weight);
-        let gap = self.mean - other.mean;
-        SineMoments {
-            mean: w * self.mean + v * other.mean,
-            variance: w * self.variance + v * other.variance + w * v * gap * gap,
-        }
-    }
-}
-
 /// [`SineMoments`] with the standardised third central moment of sin θ_o, E[(x − μ)³]/σ³.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkewedSine {
     pub moments: SineMoments,
     pub skewness: f64,
-}
-
-impl SkewedSine {
-    /// [`SineMoments::mixed_with`], the skewness blended linearly: not the mixture's own, but
-    /// continuous in `weight`, which is what a blend across a band of θ_i needs.
-    pub fn mixed_with(self, other: SkewedSine, weight: f64) -> SkewedSine {
-        SkewedSine {
-            moments: self.moments.mixed_with(other.moments, weight),
-            skewness: weight * self.skewness + (1.0 - weight) * other.skewness,
-        }
-    }
 }
 
 /// Standard deviations between the mean and the nearer end of [−1, 1] beyond which the
