@@ -102,34 +102,39 @@ struct Slope {
     weight: f64,
 }
 
-/// `n` micro-normals of a surface of Beckmann roughness β (slopes normal, variance β²/2 per
-/// axis) as a quadrature: the rank-1 lattice (Sloan & Joe 1994) u_k = {(k + ½)(1, g)/n}, g
+/// `n` micro-normals' slopes in units of the slope law's deviation β/√2 (a Beckmann surface's
+/// slopes are normal, variance β²/2 per axis), as a quadrature: the rank-1 lattice (Sloan & Joe 1994) u_k = {(k + ½)(1, g)/n}, g
 /// the nearest integer to n/φ, shifted by half a step so that it is centrally symmetric
 /// (u_{n−1−k} = 1 − u_k), mapped through the normal quantile of a law [`WIDENING`] times
 /// wider, each weighted by the ratio of the slopes' density to that law's, the weights scaled
 /// to a mean of 1. A product grid of equal-probability midpoints (departure 22's rule) cut the
-/// tails at Φ⁻¹(1/2n) per axis and missed TT's skewness by half (departure 23).
-fn lattice_slopes(beta: f64, n: usize) -> Vec<Slope> {
-    let sd = beta * std::f64::consts::FRAC_1_SQRT_2;
+/// tails at Φ⁻¹(1/2n) per axis and missed TT's skewness by half (departure 23). The same
+/// for every β, so found once per n and shared.
+fn lattice_slopes(n: usize) -> Arc<Vec<Slope>> {
+    static CACHE: SharedTables<usize, Vec<Slope>> = OnceLock::new();
+    shared_table(&CACHE, n, || unit_lattice(n))
+}
+
+/// [`lattice_slopes`] computed.
+fn unit_lattice(n: usize) -> Vec<Slope> {
     let generator = (n as f64 / ((1.0 + 5f64.sqrt()) / 2.0)).round() as usize;
-    let wide = WIDENING * sd;
     let mut slopes: Vec<Slope> = (0..n)
         .map(|k| {
             let u = (k as f64 + 0.5) / n as f64;
             let v = ((k as f64 + 0.5) * generator as f64 / n as f64).fract();
             let (zx, zy) = (normal_quantile(u), normal_quantile(v));
-            // N(s; σ) / N(s; kσ) per axis, in the lattice's own standard normal z = s / kσ.
+            // N(s; 1) / N(s; k) per axis, in the lattice's own standard normal z = s / k.
             let r2 = zx * zx + zy * zy;
             Slope {
-                x: wide * zx,
-                y: wide * zy,
+                x: WIDENING * zx,
+                y: WIDENING * zy,
                 weight: (-0.5 * r2 * (WIDENING * WIDENING - 1.0)).exp(),
             }
         })
         .collect();
     let mean = slopes.iter().map(|s| s.weight).sum::<f64>() / n as f64;
     slopes.iter_mut().for_each(|s| s.weight /= mean);
-    // Each axis centred and scaled to the law's variance under the weights, so that where
+    // Each axis centred and scaled to unit variance under the weights, so that where
     // the exit is linear in the slopes its mean and spread are exact.
     let moments = |axis: fn(&Slope) -> f64| {
         let m = slopes.iter().map(|s| s.weight * axis(s)).sum::<f64>() / n as f64;
@@ -138,7 +143,7 @@ fn lattice_slopes(beta: f64, n: usize) -> Vec<Slope> {
             .map(|s| s.weight * (axis(s) - m).powi(2))
             .sum::<f64>()
             / n as f64;
-        (m, if v > 0.0 { sd / v.sqrt() } else { 1.0 })
+        (m, if v > 0.0 { 1.0 / v.sqrt() } else { 1.0 })
     };
     let ((mx, kx), (my, ky)) = (moments(|s| s.x), moments(|s| s.y));
     for s in &mut slopes {
@@ -194,27 +199,26 @@ fn exit_pairs(
         pairs.resize(count, ExitPair::default());
         return;
     };
-    let (entry_slopes, exit_slopes) = (
-        lattice_slopes(beta, rule.entry),
-        lattice_slopes(beta, rule.exit),
-    );
-    let normal = |sx: f64, sy: f64| DVec3::new(-sx, -sy, 1.0).normalize();
+    let (entry_slopes, exit_slopes) = (lattice_slopes(rule.entry), lattice_slopes(rule.exit));
+    // The micro-normal of unit-law slopes `m` on this surface.
+    let sd = beta * std::f64::consts::FRAC_1_SQRT_2;
+    let normal = |m: &Slope| DVec3::new(-sd * m.x, -sd * m.y, 1.0).normalize();
     // The chord an entry micro-normal refracts the light into, where it meets the exit's
     // scale, and the entry's weight.
     let chord_at = |m: &Slope| {
-        let (into, w_in) = refraction_at(entry.arriving(), normal(m.x, m.y), beta, eta)?;
+        let (into, w_in) = refraction_at(entry.arriving(), normal(m), beta, eta)?;
         let chord = entry.leaving(into).ok()?;
         let exit = AtScale::inside(tilt, nusselt::propagate(chord)).ok()?;
         Some((chord, exit, w_in * m.weight))
     };
-    for m_in in &entry_slopes {
+    for m_in in entry_slopes.iter() {
         let Some((chord, exit, w_in)) = chord_at(m_in) else {
             pairs.extend(std::iter::repeat_n(ExitPair::default(), rule.exit));
             continue;
         };
         let twice_chord = 2.0 * in_plane_signed(chord, chord_sign);
         let leave = |m: &Slope| {
-            let (out, w_out) = refraction_at(exit.arriving(), normal(m.x, m.y), beta, 1.0 / eta)?;
+            let (out, w_out) = refraction_at(exit.arriving(), normal(m), beta, 1.0 / eta)?;
             let leaving = exit.leaving(out).ok()?;
             Some(ExitPair {
                 weight: w_in * w_out * m.weight,
