@@ -32,9 +32,9 @@
 
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::nusselt::{self, AtScale, Nusselt, Tilt};
-use crate::rough_interface::refraction_at;
+use crate::rough_interface::{Slope, lattice_slopes, refraction_at};
 use crate::sine_lobe::{SineMoments, SkewedSine};
-use crate::special::{asin_fast, atan2_fast, normal_quantile};
+use crate::special::{asin_fast, atan2_fast};
 use crate::table::{SharedTables, fill_rows, locate, shared_table};
 use crate::tilted_attenuation::incident;
 use glam::DVec3;
@@ -57,11 +57,6 @@ pub struct Rule {
     pub exit: usize,
 }
 
-/// How much wider than the slopes' own normal law the lattice's slopes are drawn
-/// ([`lattice_slopes`]): the exit's cut (total internal reflection past the critical angle)
-/// acts on the slopes' tails, which is where TT's skew comes from, and a lattice in the law
-/// itself reaches only Φ⁻¹(1/2n) of them.
-const WIDENING: f64 = 1.5;
 /// Where TT's light entering at one offset leaves, in the mean over the micro-normals.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughExit {
@@ -92,64 +87,6 @@ fn in_plane_signed((x, y): Nusselt, sign: f64) -> f64 {
 /// blocked, where the rough surface still lets light out.
 fn in_plane_signs(s: f64) -> (f64, f64) {
     (-s, -s)
-}
-
-/// A micro-normal's slopes along the axis and around it, and its quadrature weight.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Slope {
-    x: f64,
-    y: f64,
-    weight: f64,
-}
-
-/// `n` micro-normals' slopes in units of the slope law's deviation β/√2 (a Beckmann surface's
-/// slopes are normal, variance β²/2 per axis), as a quadrature: the rank-1 lattice (Sloan & Joe 1994) u_k = {(k + ½)(1, g)/n}, g
-/// the nearest integer to n/φ, shifted by half a step so that it is centrally symmetric
-/// (u_{n−1−k} = 1 − u_k), mapped through the normal quantile of a law [`WIDENING`] times
-/// wider, each weighted by the ratio of the slopes' density to that law's, the weights scaled
-/// to a mean of 1. A product grid of equal-probability midpoints (departure 22's rule) cut the
-/// tails at Φ⁻¹(1/2n) per axis and missed TT's skewness by half (departure 23). The same
-/// for every β, so found once per n and shared.
-fn lattice_slopes(n: usize) -> Arc<Vec<Slope>> {
-    static CACHE: SharedTables<usize, Vec<Slope>> = OnceLock::new();
-    shared_table(&CACHE, n, || unit_lattice(n))
-}
-
-/// [`lattice_slopes`] computed.
-fn unit_lattice(n: usize) -> Vec<Slope> {
-    let generator = (n as f64 / ((1.0 + 5f64.sqrt()) / 2.0)).round() as usize;
-    let mut slopes: Vec<Slope> = (0..n)
-        .map(|k| {
-            let u = (k as f64 + 0.5) / n as f64;
-            let v = ((k as f64 + 0.5) * generator as f64 / n as f64).fract();
-            let (zx, zy) = (normal_quantile(u), normal_quantile(v));
-            // N(s; 1) / N(s; k) per axis, in the lattice's own standard normal z = s / k.
-            let r2 = zx * zx + zy * zy;
-            Slope {
-                x: WIDENING * zx,
-                y: WIDENING * zy,
-                weight: (-0.5 * r2 * (WIDENING * WIDENING - 1.0)).exp(),
-            }
-        })
-        .collect();
-    let mean = slopes.iter().map(|s| s.weight).sum::<f64>() / n as f64;
-    slopes.iter_mut().for_each(|s| s.weight /= mean);
-    // Each axis centred and scaled to unit variance under the weights, so that where
-    // the exit is linear in the slopes its mean and spread are exact.
-    let moments = |axis: fn(&Slope) -> f64| {
-        let m = slopes.iter().map(|s| s.weight * axis(s)).sum::<f64>() / n as f64;
-        let v = slopes
-            .iter()
-            .map(|s| s.weight * (axis(s) - m).powi(2))
-            .sum::<f64>()
-            / n as f64;
-        (m, if v > 0.0 { 1.0 / v.sqrt() } else { 1.0 })
-    };
-    let ((mx, kx), (my, ky)) = (moments(|s| s.x), moments(|s| s.y));
-    for s in &mut slopes {
-        (s.x, s.y) = ((s.x - mx) * kx, (s.y - my) * ky);
-    }
-    slopes
 }
 
 /// TT's exit at offset h through scales tilted by α on a surface of Beckmann roughness β, by

@@ -14,9 +14,11 @@
 //! micro-normal sends to the wrong side.
 //!
 //! The mean is taken over the slopes, which are normal with variance β²/2 per axis (D(m) m·n
-//! dω_m is that density in slope space), on a product grid of equal-probability slopes: exact
-//! for smooth integrands as the grid grows, and robust at the total-internal-reflection edge,
-//! where a Gauss–Hermite rule would ring. The table is over cos θ_v, read linearly.
+//! dω_m is that density in slope space), on a Fibonacci lattice of slopes drawn from a wider
+//! law and weighted back to the slopes' own ([`lattice_slopes`]): it reaches the tails, whose
+//! micro-normals alone let light out past the critical angle, and it is robust at the
+//! total-internal-reflection edge, where a Gauss–Hermite rule would ring. The table is over
+//! cos θ_v, read linearly.
 
 use crate::beckmann::smith_g1;
 use crate::fresnel::fresnel_dielectric;
@@ -25,14 +27,81 @@ use crate::table::{SharedTables, shared_table};
 use glam::DVec3;
 use std::sync::{Arc, OnceLock};
 
-/// Equal-probability slopes per axis: 48² micro-normals per table entry.
-const SLOPES: usize = 48;
+/// Micro-normals per table entry, a Fibonacci number ([`lattice_slopes`]). A product grid of
+/// 48² equal-probability slopes stopped at 2.3 standard deviations per axis.
+const ALBEDO_SLOPES: usize = 2584;
 /// Table entries over cos θ_v ∈ [0, 1].
 const ENTRIES: usize = 1024;
-/// Equal-probability slopes per axis for the directions [`RoughInterface::refractions`] gives.
-const REFRACTION_SLOPES: usize = 4;
-/// The directions [`RoughInterface::refractions`] gives.
-pub const REFRACTIONS: usize = REFRACTION_SLOPES * REFRACTION_SLOPES;
+/// The directions [`RoughInterface::refractions`] gives: the micro-normals of a Fibonacci
+/// lattice ([`lattice_slopes`]). A product grid of 4² equal-probability slopes stopped at
+/// 1.15 standard deviations per axis, short of the steep entries whose light alone leaves
+/// where TT's exit is past the critical angle (docs/validation.md, departure 26).
+pub const REFRACTIONS: usize = 21;
+
+/// How much wider than the slopes' own normal law the lattice's slopes are drawn
+/// ([`lattice_slopes`]): the exit's cut (total internal reflection past the critical angle)
+/// acts on the slopes' tails, which is where TT's skew and the light that escapes past the
+/// critical angle come from, and a lattice in the law
+/// itself reaches only Φ⁻¹(1/2n) of them.
+const WIDENING: f64 = 1.5;
+/// A micro-normal's slopes along the axis and around it, and its quadrature weight.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Slope {
+    pub x: f64,
+    pub y: f64,
+    pub weight: f64,
+}
+
+/// `n` micro-normals' slopes in units of the slope law's deviation β/√2 (a Beckmann surface's
+/// slopes are normal, variance β²/2 per axis), as a quadrature: the rank-1 lattice (Sloan &
+/// Joe 1994) u_k = {(k + ½)(1, g)/n}, g the nearest integer to n/φ (the Fibonacci lattice
+/// where n is a Fibonacci number), shifted by half a step so that it is centrally symmetric
+/// (u_{n−1−k} = 1 − u_k), mapped through the normal quantile of a law [`WIDENING`] times
+/// wider, each weighted by the ratio of the slopes' density to that law's, the weights scaled
+/// to a mean of 1. A product grid of equal-probability midpoints (departure 22's rule) cut the
+/// tails at Φ⁻¹(1/2n) per axis and missed TT's skewness by half (departure 23). The same
+/// for every β, so found once per n and shared.
+pub(crate) fn lattice_slopes(n: usize) -> Arc<Vec<Slope>> {
+    static CACHE: SharedTables<usize, Vec<Slope>> = OnceLock::new();
+    shared_table(&CACHE, n, || unit_lattice(n))
+}
+
+/// [`lattice_slopes`] computed.
+fn unit_lattice(n: usize) -> Vec<Slope> {
+    let generator = (n as f64 / ((1.0 + 5f64.sqrt()) / 2.0)).round() as usize;
+    let mut slopes: Vec<Slope> = (0..n)
+        .map(|k| {
+            let u = (k as f64 + 0.5) / n as f64;
+            let v = ((k as f64 + 0.5) * generator as f64 / n as f64).fract();
+            let (zx, zy) = (normal_quantile(u), normal_quantile(v));
+            // N(s; 1) / N(s; k) per axis, in the lattice's own standard normal z = s / k.
+            let r2 = zx * zx + zy * zy;
+            Slope {
+                x: WIDENING * zx,
+                y: WIDENING * zy,
+                weight: (-0.5 * r2 * (WIDENING * WIDENING - 1.0)).exp(),
+            }
+        })
+        .collect();
+    let mean = slopes.iter().map(|s| s.weight).sum::<f64>() / n as f64;
+    slopes.iter_mut().for_each(|s| s.weight /= mean);
+    // Each axis centred and scaled to unit variance under the weights, so that where
+    // the exit is linear in the slopes its mean and spread are exact.
+    let moments = |axis: fn(&Slope) -> f64| {
+        let m = slopes.iter().map(|s| s.weight * axis(s)).sum::<f64>() / n as f64;
+        let v = slopes
+            .iter()
+            .map(|s| s.weight * (axis(s) - m).powi(2))
+            .sum::<f64>()
+            / n as f64;
+        (m, if v > 0.0 { 1.0 / v.sqrt() } else { 1.0 })
+    };
+    let ((mx, kx), (my, ky)) = (moments(|s| s.x), moments(|s| s.y));
+    for s in &mut slopes {
+        (s.x, s.y) = ((s.x - mx) * kx, (s.y - my) * ky);
+    }
+    slopes
+}
 
 /// Where the power arriving at the interface goes, in the mean over its micro-normals.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -71,7 +140,7 @@ struct AlbedoTable {
 }
 
 impl AlbedoTable {
-    fn new(beta: f64, eta: f64, slopes: &[f64]) -> Self {
+    fn new(beta: f64, eta: f64, slopes: &[Slope]) -> Self {
         let entries = (0..=ENTRIES)
             .map(|k| albedo_by_quadrature(k as f64 / ENTRIES as f64, beta, eta, slopes))
             .collect();
@@ -97,7 +166,8 @@ pub struct RoughInterface {
     beta: f64,
     eta: f64,
     /// The coarse slope grid of [`RoughInterface::refractions`].
-    refraction_slopes: Vec<f64>,
+    /// The micro-normals' slopes of [`RoughInterface::refractions`], at this β.
+    refraction_slopes: Vec<Slope>,
     outside: AlbedoTable,
     /// From inside, after 0, 1, … [`SPREAD_REFLECTIONS`] internal reflections.
     inside: Vec<AlbedoTable>,
@@ -111,11 +181,23 @@ const SPREAD_STEPS: usize = 16;
 impl RoughInterface {
     /// Builds both sides' tables; [`RoughInterface::shared`] keeps one per (β, η).
     pub fn new(beta: f64, eta: f64) -> Self {
-        let slopes = slope_quantiles(beta, SLOPES);
+        // The lattice of n micro-normals at this β's slope deviation β/√2.
+        let sd = beta * std::f64::consts::FRAC_1_SQRT_2;
+        let scaled = |n: usize| -> Vec<Slope> {
+            lattice_slopes(n)
+                .iter()
+                .map(|m| Slope {
+                    x: m.x * sd,
+                    y: m.y * sd,
+                    weight: m.weight,
+                })
+                .collect()
+        };
+        let slopes = scaled(ALBEDO_SLOPES);
         Self {
             beta,
             eta,
-            refraction_slopes: slope_quantiles(beta, REFRACTION_SLOPES),
+            refraction_slopes: scaled(REFRACTIONS),
             outside: AlbedoTable::new(beta, eta, &slopes),
             inside: inside_tables(AlbedoTable::new(beta, 1.0 / eta, &slopes), beta),
         }
@@ -158,21 +240,20 @@ pub struct Refraction {
 }
 
 impl RoughInterface {
-    /// The light refracted into the fiber, spread over the directions of a coarse grid of
-    /// micro-normals (`REFRACTION_SLOPES`² of equal probability), each with the weight of
+    /// The light refracted into the fiber, spread over the directions of a lattice of
+    /// micro-normals ([`REFRACTIONS`]), each with its quadrature weight times
     /// `albedo_by_quadrature`'s transmitted term (0 where a micro-normal sends nothing in):
     /// where the mean of [`RoughInterface::outside`] keeps one direction, these keep how the
     /// entry's micro-normal tilts the path inside, which decides how near the critical angle
     /// each part meets the exit. `arriving` points away from the surface, z > 0.
     pub fn refractions(&self, arriving: DVec3) -> [Refraction; REFRACTIONS] {
-        let slopes = &self.refraction_slopes;
         std::array::from_fn(|k| {
-            let (sx, sy) = (slopes[k / REFRACTION_SLOPES], slopes[k % REFRACTION_SLOPES]);
-            let m = DVec3::new(-sx, -sy, 1.0).normalize();
+            let slope = &self.refraction_slopes[k];
+            let m = DVec3::new(-slope.x, -slope.y, 1.0).normalize();
             match refraction_at(arriving, m, self.beta, self.eta) {
                 Some((travel, weight)) => Refraction {
                     travel,
-                    weight: weight / REFRACTIONS as f64,
+                    weight: weight * slope.weight / REFRACTIONS as f64,
                 },
                 None => Refraction {
                     travel: -DVec3::Z,
@@ -259,11 +340,11 @@ pub(crate) fn slope_quantiles(beta: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-/// ρ_r and ρ_t at cos θ_v by the product rule over `slopes`: the mean over micro-normals m
+/// ρ_r and ρ_t at cos θ_v by the quadrature `slopes` (each weighted): the mean over micro-normals m
 /// (density D(m) m·n) of (v·m)⁺ G1(v, m) G1(o, m) / (v·n m·n) times F(v·m) for the mirror
 /// direction o and 1 − F for the refracted one (the weight `cuticle-sim` gives each sampled
 /// micro-normal, Walter et al. 2007 eq. 41), where o lies on its own side of the surface.
-fn albedo_by_quadrature(cos_v: f64, beta: f64, eta: f64, slopes: &[f64]) -> Albedo {
+fn albedo_by_quadrature(cos_v: f64, beta: f64, eta: f64, slopes: &[Slope]) -> Albedo {
     if cos_v <= 0.0 {
         return Albedo {
             reflected: 1.0,
@@ -273,15 +354,15 @@ fn albedo_by_quadrature(cos_v: f64, beta: f64, eta: f64, slopes: &[f64]) -> Albe
     }
     let v = DVec3::new((1.0 - cos_v * cos_v).max(0.0).sqrt(), 0.0, cos_v);
     let mut sum = Albedo::default();
-    for &sx in slopes {
-        for &sy in slopes {
-            let m = DVec3::new(-sx, -sy, 1.0).normalize();
+    for slope in slopes {
+        {
+            let m = DVec3::new(-slope.x, -slope.y, 1.0).normalize();
             let c = v.dot(m);
             if c <= 0.0 {
                 continue;
             }
             let g_in = smith_g1(cos_v, c, beta);
-            let weight = c * g_in / (cos_v * m.z);
+            let weight = slope.weight * c * g_in / (cos_v * m.z);
             let f = fresnel_dielectric(c, eta);
             let reflected = 2.0 * c * m - v;
             if reflected.z > 0.0 {
@@ -290,11 +371,11 @@ fn albedo_by_quadrature(cos_v: f64, beta: f64, eta: f64, slopes: &[f64]) -> Albe
                 sum.reflected_cos += power * reflected.z;
             }
             if let Some((_, transmitted)) = refraction_at(v, m, beta, eta) {
-                sum.transmitted += transmitted;
+                sum.transmitted += slope.weight * transmitted;
             }
         }
     }
-    let n = (slopes.len() * slopes.len()) as f64;
+    let n = slopes.len() as f64;
     Albedo {
         reflected: sum.reflected / n,
         transmitted: sum.transmitted / n,
@@ -355,7 +436,12 @@ mod tests {
         let short = rough.inside_after(critical + 0.01, 0);
         assert!(past.transmitted > 0.02, "{past:?}");
         assert!(short.reflected > Albedo::smooth(critical + 0.01, 1.0 / eta).reflected + 0.02);
-        let fine = slope_quantiles(beta, 200);
+        // A product grid of 200² equal-probability slopes, each of weight 1.
+        let axis = slope_quantiles(beta, 200);
+        let fine: Vec<Slope> = axis
+            .iter()
+            .flat_map(|&x| axis.iter().map(move |&y| Slope { x, y, weight: 1.0 }))
+            .collect();
         for c in [0.2, critical - 0.01, critical + 0.01, 0.9] {
             for (side, e) in [
                 (rough.outside(c), eta),
