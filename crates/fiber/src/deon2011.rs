@@ -25,7 +25,7 @@ use crate::longitudinal::{LongitudinalLobe, ShiftedCones};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::params::{FiberParams, ParamError};
 use crate::special::{asin_fast, cos_quadrant, normal_quantile_fast, sin_cos_quadrant};
-use crate::table::AzimuthalTable;
+use crate::table::{AzimuthalTable, ThetaICell};
 use glam::{DVec3, Vec4};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -371,8 +371,8 @@ struct Incident {
     si: f64,
     ci: f64,
     inclination: Inclination,
-    /// The table's θ_i cell: lower node and fraction.
-    cell: (usize, f32),
+    /// The table's θ_i cells.
+    cell: ThetaICell,
 }
 
 /// What eval and pdf share for one (ω_i, ω_o) on the tabulated path, with the table's taps
