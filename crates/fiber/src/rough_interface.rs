@@ -15,7 +15,7 @@
 //!
 //! The mean is taken over the slopes, which are normal with variance β²/2 per axis (D(m) m·n
 //! dω_m is that density in slope space), on a Fibonacci lattice of slopes drawn from a wider
-//! law and weighted back to the slopes' own ([`lattice_slopes`]): it reaches the tails, whose
+//! law and weighted back to the slopes' own (`lattice_slopes`): it reaches the tails, whose
 //! micro-normals alone let light out past the critical angle, and it is robust at the
 //! total-internal-reflection edge, where a Gauss–Hermite rule would ring. The table is over
 //! cos θ_v, read linearly.
@@ -33,7 +33,7 @@ const ALBEDO_SLOPES: usize = 2584;
 /// Table entries over cos θ_v ∈ [0, 1].
 const ENTRIES: usize = 1024;
 /// The directions [`RoughInterface::refractions`] gives: the micro-normals of a Fibonacci
-/// lattice ([`lattice_slopes`]). A product grid of 4² equal-probability slopes stopped at
+/// lattice (`lattice_slopes`). A product grid of 4² equal-probability slopes stopped at
 /// 1.15 standard deviations per axis, short of the steep entries whose light alone leaves
 /// where TT's exit is past the critical angle (docs/validation.md, departure 26).
 pub const REFRACTIONS: usize = 21;

@@ -8,7 +8,7 @@
 //! η′, so φ is folded to [0, π] and θ_d is tabulated along 1/η′ ∈ [0, 1/η]. The φ spacing follows the
 //! narrowest azimuthal lobe (a third of its standard deviation, 64 to 1024 columns); below
 //! β ≈ 0.02 the cap binds and the table blurs the narrowest lobes. Each row holds its lobes'
-//! shape, normalised, and their energies over θ_i come from a finer axis ([`energy`]), where
+//! shape, normalised, and their energies over θ_i come from a finer axis (`table/energy.rs`), where
 //! a lobe's energy can fall by an order of magnitude between two rows. Its error against
 //! direct quadrature is measured in the tests below and in BENCHMARKS.md.
 
@@ -54,7 +54,7 @@ pub struct AzimuthalTable {
 }
 
 /// The cells of θ_i in a lookup: the lower node and the fraction toward the next on the
-/// rows' axis and on the energies' finer one ([`energy`]).
+/// rows' axis and on the energies' finer one (`table/energy.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ThetaICell {
     i0: usize,
@@ -271,11 +271,12 @@ impl AzimuthalTable {
     }
 
     /// The trilinear taps of the blurred lobes p = 1, 2, 3 (over θ_i, θ_d's η/η′, |φ|) and the
-    /// remainder's linear tap over θ_i, each (attenuation RGB, selection): each lobe the sum
-    /// of its eight corner texels times their trilinear weights, found once for all three
-    /// lobes, times its energy at θ_i ([`energy`]). The same interpolant as the nested lerps of [`AzimuthalTable::taps_nested`]
-    /// (within f32 rounding, `corner_weights_match_the_nested_lerps`) in fewer operations and
-    /// registers, and one bounds check per pair of neighbouring φ columns.
+    /// remainder's tap over θ_i, each (attenuation RGB, selection): each lobe the sum of its
+    /// eight corner texels times their trilinear weights, found once for all three lobes,
+    /// times its energy at θ_i (`table/energy.rs`). The same interpolant as the nested lerps
+    /// of [`AzimuthalTable::taps_nested`] (within f32 rounding,
+    /// `corner_weights_match_the_nested_lerps`) in fewer operations and registers, and one
+    /// bounds check per pair of neighbouring φ columns.
     #[inline(always)]
     pub fn taps(&self, at: TablePoint) -> [Vec4; 4] {
         let (base, corners, gf, ff) = self.corners(at);

@@ -5,8 +5,8 @@
 //!
 //! Why: near grazing incidence a lobe's energy can fall by an order of magnitude between two
 //! θ_i nodes (TT's through tilted scales at θ_i ≈ 1.1, where its exit passes the critical
-//! angle and only the slopes' tails let light out), nearly exponentially. A linear blend of the
-//! two rows gave TT at θ_i = 1.1, α = 4°, β = 0.02 1.8 times its energy; the logarithm of the
+//! angle and only the slopes' tails let light out), nearly exponentially, and a linear blend
+//! of the two rows overshoots it (docs/validation.md, departure 26); the logarithm of the
 //! energy is nearly quadratic in θ_i there, which the cubic follows
 //! (`energy_follows_the_lobe_between_the_nodes`). The shape changes slowly, so blending it
 //! linearly is as good as it was.
