@@ -325,9 +325,9 @@ impl AzimuthalTable {
                 .expect("a pair of columns");
             acc += *lo * Vec4::splat(w * gf) + *hi * Vec4::splat(w * ff);
         }
-        let [tt, trt, trrt, rest] = self.energy.at(at.e0, at.fe);
-        let acc = acc * Vec4::new(tt.w, trt.w, trrt.w, 0.0);
-        [acc.x, acc.y, acc.z, rest.w]
+        let energy = self.energy.selection_at(at.e0, at.fe);
+        let acc = acc * energy;
+        [acc.x, acc.y, acc.z, energy.w]
     }
 
     /// [`AzimuthalTable::taps`] by nested lerps (φ, then θ_d, then θ_i): its reference twin.
