@@ -8,9 +8,9 @@
 //! η′, so φ is folded to [0, π] and θ_d is tabulated along 1/η′ ∈ [0, 1/η]. The φ spacing follows the
 //! narrowest azimuthal lobe (a third of its standard deviation, 64 to 1024 columns); below
 //! β ≈ 0.02 the cap binds and the table blurs the narrowest lobes. Each row holds its lobes'
-//! shape, normalised, and their energies over θ_i come from a finer axis (`table/energy.rs`), where
-//! a lobe's energy can fall by an order of magnitude between two rows. Its error against
-//! direct quadrature is measured in the tests below and in BENCHMARKS.md.
+//! shapes, normalised; their energies over θ_i come from a finer axis (`table/energy.rs`),
+//! since a lobe's energy can fall by an order of magnitude between two rows. Its error
+//! against direct quadrature is measured in the tests below and in BENCHMARKS.md.
 
 mod energy;
 
