@@ -566,6 +566,7 @@ fn gamma_at(k: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::tilted_deflection::tilted_exit;
 
     /// [`fit_column`] on light that is itself one of the lobes, binned about the moments of
     /// another (a skewness twice its own, as the pole's cut gives the columns): it finds
@@ -614,15 +615,20 @@ mod tests {
         let start = [-0.9316, 0.0276, 0.32];
         let light = binned(start);
         let fitted = fit_column(start, &light);
-        let (before, after) = (distance(start, start, &light), distance(fitted, start, &light));
+        let (before, after) = (
+            distance(start, start, &light),
+            distance(fitted, start, &light),
+        );
         eprintln!("fit: L1 {before:.4} -> {after:.4}, {start:?} -> {fitted:?}");
         assert!(before > 0.03 && after < 0.01, "{before} {after}");
         let again = fit_column(truth, &binned(truth));
         for (a, t) in again.iter().zip(&truth) {
-            assert!((a - t).abs() <= 0.01 * t.abs(), "{again:?} against {truth:?}");
+            assert!(
+                (a - t).abs() <= 0.01 * t.abs(),
+                "{again:?} against {truth:?}"
+            );
         }
     }
-    use crate::tilted_deflection::tilted_exit;
 
     /// As β → 0 the rough exit is the smooth one, where the smooth path leaves.
     #[test]
