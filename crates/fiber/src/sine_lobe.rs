@@ -404,6 +404,15 @@ impl SkewedSineLobe {
         )
     }
 
+    /// The lobe whose truncation to [−1, 1] has `column`'s mean and variance, split as its
+    /// skewness says ([`Self::matched`]).
+    pub fn of_column(column: SkewedSine) -> Self {
+        Self::new(SkewedSine {
+            moments: Self::matched(column),
+            skewness: column.skewness,
+        })
+    }
+
     /// The lobe of mean μ and standard deviation σ split as `split` says.
     #[inline]
     pub fn split(mean: f64, sd: f64, split: SkewSplit) -> Self {
