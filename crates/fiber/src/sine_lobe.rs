@@ -1,5 +1,7 @@
 //! A longitudinal lobe that is Gaussian in x = sin θ_o, truncated to [−1, 1]: the shape of the
 //! light a refraction sends out when x, not θ_o, is what the micro-normal slopes move linearly.
+//! Where the light ends short of the pole, the lobe is truncated to [−e, e] instead, e its
+//! reach ([`SkewedSine::reach`]); everything below holds with e for 1.
 //!
 //! d'Eon et al. 2014 §2.2 follows a path in Nusselt coordinates, where the exit direction's
 //! x = sin θ_o is, to first order, linear in the slope of each scale the path meets: Gaussian
@@ -27,12 +29,18 @@ pub struct SineMoments {
     pub variance: f64,
 }
 
-/// [`SineMoments`] with the standardised third central moment of sin θ_o, E[(x − μ)³]/σ³.
+/// [`SineMoments`] with the standardised third central moment of sin θ_o, E[(x − μ)³]/σ³,
+/// and the lobe's reach: the |x| it ends at, [`FULL_REACH`] where nothing but the pole stops
+/// it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkewedSine {
     pub moments: SineMoments,
     pub skewness: f64,
+    pub reach: f64,
 }
+
+/// The reach of a lobe that only the poles end: x ∈ [−1, 1].
+pub const FULL_REACH: f64 = 1.0;
 
 /// Standard deviations between the mean and the nearer end of [−1, 1] beyond which the
 /// truncation is below f64's resolution of Z (Φ(−8.3) = 5e-17).
@@ -48,7 +56,7 @@ fn cut_beyond(distance: f64x4) -> f64x4 {
 /// A lobe Gaussian in sin θ_o (module docs), with the parts of M that depend on the lobe alone.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SineLobe {
-    /// μ, clamped to [−1, 1].
+    /// μ, clamped to [−reach, reach].
     pub mean: f64,
     /// σ, at least √[`MIN_VARIANCE`].
     pub sd: f64,
@@ -57,8 +65,10 @@ pub struct SineLobe {
     mass: f64,
     /// M at the mean, 1/(σ Z √(2π)).
     peak: f64,
-    /// Φ at the nearer end, −(1 − |μ|)/σ: the mass the truncation cuts there.
+    /// Φ at the nearer end, −(e − |μ|)/σ: the mass the truncation cuts there.
     cut_near: f64,
+    /// e: the lobe is truncated to [−e, e], e ≤ 1.
+    reach: f64,
 }
 
 impl SineLobe {
@@ -70,29 +80,39 @@ impl SineLobe {
         mass: 1.0,
         peak: 0.0,
         cut_near: 0.0,
+        reach: FULL_REACH,
     };
 
-    /// The lobe with mean μ and variance σ² of its untruncated Gaussian.
+    /// The lobe with mean μ and variance σ² of its untruncated Gaussian, truncated to
+    /// [−1, 1].
     #[inline]
     pub fn new(moments: SineMoments) -> Self {
-        Self::with_sd(moments.mean, moments.variance.max(0.0).sqrt())
+        Self::with_sd(moments.mean, moments.variance.max(0.0).sqrt(), FULL_REACH)
     }
 
-    /// The lobe with mean μ and standard deviation σ of its untruncated Gaussian.
+    /// The lobe with mean μ and standard deviation σ of its untruncated Gaussian, truncated
+    /// to [−e, e] (e the reach, clamped to (0, 1]).
     #[inline]
-    pub fn with_sd(mean: f64, sd: f64) -> Self {
+    pub fn with_sd(mean: f64, sd: f64, reach: f64) -> Self {
         let sd = sd.max(MIN_VARIANCE.sqrt());
         let inv_sd = 1.0 / sd;
-        let mean = mean.clamp(-1.0, 1.0);
-        let [near, far] = end_distances(mean, inv_sd);
+        let reach = clamp_reach(reach);
+        let mean = mean.clamp(-reach, reach);
+        let [near, far] = end_distances(mean, inv_sd, reach);
         let [cut_near, cut_far, _, _] = cut_beyond(f64x4::from([near, far, 0.0, 0.0])).into();
-        Self::with_cuts(mean, sd, inv_sd, [cut_near, cut_far])
+        Self::with_cuts(mean, sd, inv_sd, [cut_near, cut_far], reach)
     }
 
-    /// The lobe of mean μ in [−1, 1], σ at least √[`MIN_VARIANCE`] and its reciprocal, whose
-    /// Gaussian the ends cut by `[near, far]` ([`end_distances`], [`cut_beyond`]).
+    /// The lobe of mean μ in [−e, e], σ at least √[`MIN_VARIANCE`] and its reciprocal, whose
+    /// Gaussian the ends ±e cut by `[near, far]` ([`end_distances`], [`cut_beyond`]).
     #[inline]
-    fn with_cuts(mean: f64, sd: f64, inv_sd: f64, [cut_near, cut_far]: [f64; 2]) -> Self {
+    fn with_cuts(
+        mean: f64,
+        sd: f64,
+        inv_sd: f64,
+        [cut_near, cut_far]: [f64; 2],
+        reach: f64,
+    ) -> Self {
         let mass = 1.0 - cut_near - cut_far;
         Self {
             mean,
@@ -101,16 +121,17 @@ impl SineLobe {
             mass,
             peak: inv_sd / ((2.0 * PI).sqrt() * mass),
             cut_near,
+            reach,
         }
     }
 
-    /// The mean and variance of this part as it is, truncated to [−1, 1]
+    /// The mean and variance of this part as it is, truncated to [−e, e]
     /// ([`SkewedSineLobe::truncated_moments`]).
     fn truncated_moments(&self) -> SineMoments {
         let density = |z: f64| (-0.5 * z * z).exp() / (2.0 * PI).sqrt();
         let (low, high) = (
-            (-1.0 - self.mean) * self.inv_sd,
-            (1.0 - self.mean) * self.inv_sd,
+            (-self.reach - self.mean) * self.inv_sd,
+            (self.reach - self.mean) * self.inv_sd,
         );
         let (d_low, d_high) = (density(low), density(high));
         let shift = (d_low - d_high) / self.mass;
@@ -121,9 +142,12 @@ impl SineLobe {
         }
     }
 
-    /// M at sin θ_o = `sin_o`.
+    /// M at sin θ_o = `sin_o`: 0 beyond the reach.
     #[inline]
     pub fn eval(&self, sin_o: f64) -> f64 {
+        if sin_o.abs() > self.reach {
+            return 0.0;
+        }
         let z = (sin_o - self.mean) * self.inv_sd;
         self.peak * exp_fast(-0.5 * z * z)
     }
@@ -140,16 +164,28 @@ impl SineLobe {
             false => (self.mean, u),
         };
         let x = mirrored + self.sd * normal_quantile_fast(self.cut_near + u * self.mass);
-        let x = x.clamp(-1.0, 1.0);
+        let x = x.clamp(-self.reach, self.reach);
         if self.mean > 0.0 { -x } else { x }
     }
 }
 
-/// The distances in standard deviations from μ to the nearer end of [−1, 1] and to the
+/// The distances in standard deviations from μ to the nearer end of [−e, e] and to the
 /// farther.
 #[inline]
-fn end_distances(mean: f64, inv_sd: f64) -> [f64; 2] {
-    [(1.0 - mean.abs()) * inv_sd, (1.0 + mean.abs()) * inv_sd]
+fn end_distances(mean: f64, inv_sd: f64, reach: f64) -> [f64; 2] {
+    [(reach - mean.abs()) * inv_sd, (reach + mean.abs()) * inv_sd]
+}
+
+/// The least reach a lobe takes: a hundredth of the sphere's sines, far inside any light.
+const LEAST_REACH: f64 = 0.01;
+
+/// A reach in [`LEAST_REACH`], [`FULL_REACH`] (NaN to the full reach).
+#[inline]
+fn clamp_reach(reach: f64) -> f64 {
+    match reach.is_nan() {
+        true => FULL_REACH,
+        false => reach.clamp(LEAST_REACH, FULL_REACH),
+    }
 }
 
 /// Secant steps of [`SkewedSineLobe::matched`].
@@ -236,7 +272,7 @@ impl SkewSplit {
 const HALF_NORMAL_MEAN: f64 = 0.797_884_560_802_865_4;
 
 /// A two-piece normal in sin θ_o (John 1982): Gaussian of deviation σ₁ below its mode and σ₂
-/// above it, continuous at the mode, truncated to [−1, 1] and normalised there:
+/// above it, continuous at the mode, truncated to [−e, e] (e its reach) and normalised there:
 /// M(x) = e^{−z²/2} / Z, z = (x − mode)/σ_side, Z = Σ σ_side √(2π) (½ − Φ(−d_side/σ_side)),
 /// d_side the distance from the mode to that side's end. With sides a = 1 − r and b = 1 + r
 /// (r its asymmetry), mean − mode = √(2/π)(b − a), variance (1 − 2/π)(b − a)² + ab and third
@@ -244,7 +280,7 @@ const HALF_NORMAL_MEAN: f64 = 0.797_884_560_802_865_4;
 /// any skewness.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct TwoPiece {
-    /// The mode, clamped to [−1, 1].
+    /// The mode, clamped to [−e, e].
     mode: f64,
     /// σ below and above the mode, and their reciprocals.
     sides: [f64; 2],
@@ -255,6 +291,8 @@ struct TwoPiece {
     below: f64,
     /// 1/Z.
     peak: f64,
+    /// e.
+    reach: f64,
 }
 
 impl TwoPiece {
@@ -266,6 +304,7 @@ impl TwoPiece {
         cuts: [0.0; 2],
         below: 0.5,
         peak: 0.0,
+        reach: FULL_REACH,
     };
 
     /// The skewness of asymmetry r (the moments in the type's documentation).
@@ -288,16 +327,17 @@ impl TwoPiece {
         0.5 * (low + high)
     }
 
-    /// The two-piece normal of untruncated mean μ, deviation σ and asymmetry r.
+    /// The two-piece normal of untruncated mean μ, deviation σ and asymmetry r, truncated to
+    /// [−e, e] (e in (0, 1]).
     #[inline]
-    fn new(mean: f64, sd: f64, r: f64) -> Self {
+    fn new(mean: f64, sd: f64, r: f64, reach: f64) -> Self {
         let r = r.clamp(-0.999, 0.999);
         let (d, ab) = (2.0 * r, 1.0 - r * r);
         let scale = sd / ((1.0 - 2.0 / PI) * d * d + ab).sqrt();
-        let mode = (mean - HALF_NORMAL_MEAN * d * scale).clamp(-1.0, 1.0);
+        let mode = (mean - HALF_NORMAL_MEAN * d * scale).clamp(-reach, reach);
         let sides = [(1.0 - r) * scale, (1.0 + r) * scale].map(|s| s.max(MIN_VARIANCE.sqrt()));
         let inv_sides = sides.map(|s| 1.0 / s);
-        let distances = [(mode + 1.0) * inv_sides[0], (1.0 - mode) * inv_sides[1]];
+        let distances = [(mode + reach) * inv_sides[0], (reach - mode) * inv_sides[1]];
         let cuts: [f64; 2] = match distances[0].min(distances[1]) > UNTRUNCATED {
             true => [0.0; 2],
             false => {
@@ -315,10 +355,11 @@ impl TwoPiece {
             cuts,
             below: masses[0] / total,
             peak: 1.0 / ((2.0 * PI).sqrt() * total),
+            reach,
         }
     }
 
-    /// M at sin θ_o: one Gaussian, of the side it lies on.
+    /// M at sin θ_o within the reach: one Gaussian, of the side it lies on.
     #[inline]
     fn eval(&self, sin_o: f64) -> f64 {
         let side = usize::from(sin_o > self.mode);
@@ -339,19 +380,19 @@ impl TwoPiece {
             self.mode
                 - self.sides[1] * normal_quantile_fast(self.cuts[1] + t * (0.5 - self.cuts[1]))
         };
-        x.clamp(-1.0, 1.0)
+        x.clamp(-self.reach, self.reach)
     }
 
     /// The mean and mean square as truncated, each side a normal about the mode cut to
-    /// [−1, mode] or [mode, 1] (Johnson, Kotz & Balakrishnan 1994 §10.1, as
+    /// [−e, mode] or [mode, e] (Johnson, Kotz & Balakrishnan 1994 §10.1, as
     /// [`SkewedSineLobe::truncated_moments`]), the sides weighted by their light.
     fn truncated_raw_moments(&self) -> [f64; 2] {
         let density = |z: f64| (-0.5 * z * z).exp() / (2.0 * PI).sqrt();
         let side = |k: usize| -> [f64; 2] {
             let (sd, mass) = (self.sides[k], 0.5 - self.cuts[k]);
             let (alpha, beta) = match k {
-                0 => ((-1.0 - self.mode) / sd, 0.0),
-                _ => (0.0, (1.0 - self.mode) / sd),
+                0 => ((-self.reach - self.mode) / sd, 0.0),
+                _ => (0.0, (self.reach - self.mode) / sd),
             };
             let (da, db) = (density(alpha), density(beta));
             let shift = (da - db) / mass;
@@ -381,8 +422,10 @@ impl TwoPiece {
 /// with the same moments has them too), which alone carries a larger skew: the mixture there
 /// would grow a shoulder, and the light near grazing incidence, skewed that much, stops short
 /// of the pole as the two-piece's steep side does (departure 24). γ = 0 is the [`SineLobe`].
-/// The moments are those of the untruncated parts, and each part is normalised over [−1, 1],
-/// so the lobe integrates to 1.
+/// The moments are those of the untruncated parts, and each part is normalised over [−e, e],
+/// e the lobe's reach, so the lobe integrates to 1. The reach is the pole ([`FULL_REACH`])
+/// unless the light ends short of it: TT's, where the exit's tilted scale hides the
+/// directions nearest the pole (departure 28).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkewedSineLobe {
     parts: [SineLobe; 2],
@@ -392,6 +435,8 @@ pub struct SkewedSineLobe {
     /// The untruncated mean and standard deviation.
     mean: f64,
     sd: f64,
+    /// e: M is 0 where |x| > e.
+    reach: f64,
 }
 
 impl SkewedSineLobe {
@@ -401,29 +446,32 @@ impl SkewedSineLobe {
             mean,
             variance.max(0.0).sqrt(),
             SkewSplit::new(skewed.skewness),
+            skewed.reach,
         )
     }
 
-    /// The lobe whose truncation to [−1, 1] has `column`'s mean and variance, split as its
+    /// The lobe whose truncation to its reach has `column`'s mean and variance, split as its
     /// skewness says ([`Self::matched`]).
     pub fn of_column(column: SkewedSine) -> Self {
         Self::new(SkewedSine {
             moments: Self::matched(column),
-            skewness: column.skewness,
+            ..column
         })
     }
 
-    /// The lobe of mean μ and standard deviation σ split as `split` says.
+    /// The lobe of mean μ and standard deviation σ split as `split` says, truncated to
+    /// [−e, e] (e the reach, clamped to (0, 1]).
     #[inline]
-    pub fn split(mean: f64, sd: f64, split: SkewSplit) -> Self {
+    pub fn split(mean: f64, sd: f64, split: SkewSplit, reach: f64) -> Self {
+        let reach = clamp_reach(reach);
         // Each family built only where it has a share: the other is never read.
         let share = split.two_piece;
         let two_piece = match share > 0.0 {
-            true => TwoPiece::new(mean, sd, split.asymmetry),
+            true => TwoPiece::new(mean, sd, split.asymmetry, reach),
             false => TwoPiece::UNUSED,
         };
         let parts = match share < 1.0 {
-            true => Self::mixture_parts(mean, sd, split),
+            true => Self::mixture_parts(mean, sd, split, reach),
             false => [SineLobe::UNUSED; 2],
         };
         Self {
@@ -432,44 +480,46 @@ impl SkewedSineLobe {
             share,
             mean,
             sd,
+            reach,
         }
     }
 
-    /// The mixture's two parts for mean μ, deviation σ and `split`'s offset.
+    /// The mixture's two parts for mean μ, deviation σ and `split`'s offset, within reach e.
     #[inline]
-    fn mixture_parts(mean: f64, sd: f64, split: SkewSplit) -> [SineLobe; 2] {
+    fn mixture_parts(mean: f64, sd: f64, split: SkewSplit, reach: f64) -> [SineLobe; 2] {
         let d = split.offset * sd;
         let part_sd = (split.part_sd * sd).max(MIN_VARIANCE.sqrt());
         let inv_sd = 1.0 / part_sd;
-        let means =
-            [mean - SKEW_WEIGHT * d, mean + (1.0 - SKEW_WEIGHT) * d].map(|m| m.clamp(-1.0, 1.0));
+        let means = [mean - SKEW_WEIGHT * d, mean + (1.0 - SKEW_WEIGHT) * d]
+            .map(|m| m.clamp(-reach, reach));
         // Both parts' ends in one set of lanes, where any is near enough to cut.
-        let [a, b] = means.map(|m| end_distances(m, inv_sd));
+        let [a, b] = means.map(|m| end_distances(m, inv_sd, reach));
         let cuts: [f64; 4] = match a[0].min(b[0]) > UNTRUNCATED {
             true => [0.0; 4],
             false => cut_beyond(f64x4::from([a[0], a[1], b[0], b[1]])).into(),
         };
         [
-            SineLobe::with_cuts(means[0], part_sd, inv_sd, [cuts[0], cuts[1]]),
-            SineLobe::with_cuts(means[1], part_sd, inv_sd, [cuts[2], cuts[3]]),
+            SineLobe::with_cuts(means[0], part_sd, inv_sd, [cuts[0], cuts[1]], reach),
+            SineLobe::with_cuts(means[1], part_sd, inv_sd, [cuts[2], cuts[3]], reach),
         ]
     }
 
     /// The untruncated mean and variance whose lobe, split as `skewed`'s skewness says and
-    /// truncated to [−1, 1], has `skewed`'s mean and variance: near a pole the ends cut a
-    /// Gaussian's tail off and move the truncated mean toward the equator, so the untruncated
-    /// mean and deviation are set apart from the target by what the cut takes
+    /// truncated to its reach [−e, e], has `skewed`'s mean and variance: near an end the cut
+    /// takes a Gaussian's tail off and moves the truncated mean toward the equator, so the
+    /// untruncated mean and deviation are set apart from the target by what the cut takes
     /// ([`Self::truncated_moments`], secant steps).
     pub fn matched(skewed: SkewedSine) -> SineMoments {
         let target = skewed.moments;
         let split = SkewSplit::new(skewed.skewness);
+        let reach = clamp_reach(skewed.reach);
         let target_sd = target.variance.max(0.0).sqrt();
-        let (mut mean, mut sd) = (target.mean.clamp(-1.0, 1.0), target_sd);
+        let (mut mean, mut sd) = (target.mean.clamp(-reach, reach), target_sd);
         // Secant steps in each: the truncated mean moves by less than the untruncated one
         // near a pole (by about half at 1.7 deviations from it), so a plain step undershoots.
         let mut last: Option<([f64; 2], [f64; 2])> = None;
         for _ in 0..MATCHING_STEPS {
-            let got = Self::split(mean, sd, split).truncated_moments();
+            let got = Self::split(mean, sd, split, reach).truncated_moments();
             let got = [got.mean, got.variance.sqrt()];
             if !(got[1] > 0.0 && got[0].is_finite()) {
                 break;
@@ -483,13 +533,13 @@ impl SkewedSineLobe {
             let mean_slope = slope(0).unwrap_or(1.0);
             let sd_slope = slope(1).unwrap_or(got[1] / sd);
             last = Some((at, got));
-            mean = (mean + (target.mean - got[0]) / mean_slope).clamp(-1.0, 1.0);
+            mean = (mean + (target.mean - got[0]) / mean_slope).clamp(-reach, reach);
             sd = (sd + (target_sd - got[1]) / sd_slope).max(0.25 * target_sd);
         }
-        // Within a deviation or two of a pole no untruncated lobe inside [−1, 1] has the
+        // Within a deviation or two of an end no untruncated lobe inside [−e, e] has the
         // target's moments: there the match fades to the target itself, smoothly in the
         // distance, so that a table of it stays smooth.
-        let distance = (1.0 - target.mean.abs()) / target_sd.max(f64::MIN_POSITIVE);
+        let distance = (reach - target.mean.abs()) / target_sd.max(f64::MIN_POSITIVE);
         let t = ((distance - 1.0) / (MATCHED_FROM - 1.0)).clamp(0.0, 1.0);
         let share = t * t * (3.0 - 2.0 * t);
         let sd = target_sd + share * (sd - target_sd);
@@ -499,7 +549,7 @@ impl SkewedSineLobe {
         }
     }
 
-    /// The mean and variance of the lobe as it is, each part truncated to [−1, 1]
+    /// The mean and variance of the lobe as it is, each part truncated to [−e, e]
     /// (Johnson, Kotz & Balakrishnan 1994 §10.1: a normal of mean μ and deviation σ cut to
     /// [a, b] has mean μ + σ (φ(α) − φ(β)) / Z and variance
     /// σ² (1 + (α φ(α) − β φ(β)) / Z − ((φ(α) − φ(β)) / Z)²), α = (a − μ)/σ, β = (b − μ)/σ).
@@ -536,9 +586,12 @@ impl SkewedSineLobe {
     }
 
     /// M at sin θ_o = `sin_o`: the mixture's two Gaussians in one set of lanes, the
-    /// two-piece's one, each where it has a share.
+    /// two-piece's one, each where it has a share; 0 beyond the reach.
     #[inline]
     pub fn eval(&self, sin_o: f64) -> f64 {
+        if sin_o.abs() > self.reach {
+            return 0.0;
+        }
         let t = self.share;
         let two_piece = match t > 0.0 {
             true => t * self.two_piece.eval(sin_o),
@@ -584,19 +637,22 @@ mod tests {
     /// integrated over [−1, 1].
     #[test]
     fn matched_lobe_has_the_target_moments_after_its_truncation() {
-        // The mixture alone, the mixture passing to the two-piece, and the two-piece alone.
+        // The mixture alone, the mixture passing to the two-piece, and the two-piece alone,
+        // at the pole and at a reach short of it (the same distance to the end).
         for skewness in [0.2, 0.3, 0.6] {
-            matched_lobe_has_the_target_moments(skewness);
+            matched_lobe_has_the_target_moments(skewness, FULL_REACH);
+            matched_lobe_has_the_target_moments(skewness, 0.99);
         }
     }
 
-    fn matched_lobe_has_the_target_moments(skewness: f64) {
+    fn matched_lobe_has_the_target_moments(skewness: f64, reach: f64) {
         let target = SkewedSine {
             moments: SineMoments {
-                mean: -0.93,
+                mean: -0.93 + (1.0 - reach),
                 variance: 0.03f64.powi(2),
             },
             skewness,
+            reach,
         };
         let integrated = |lobe: &SkewedSineLobe| {
             let n = 200_000;
@@ -772,26 +828,31 @@ mod tests {
         }
     }
 
-    /// The skewed lobes of [`skewed_lobe_keeps_its_moments`] and one cut by the pole.
+    /// The skewed lobes of [`skewed_lobe_keeps_its_moments`], one cut by the pole, and three
+    /// cut short of it by their reach: the mixture, the two-piece, and the blend of both.
     fn skewed_lobes() -> Vec<(SkewedSine, SkewedSineLobe)> {
         [
-            (-0.5, 0.03, -LARGEST_SKEWNESS),
-            (-0.5, 0.03, -0.3),
-            (-0.5, 0.03, 0.0),
-            (0.2, 0.05, 0.3),
-            (0.2, 0.05, LARGEST_SKEWNESS),
-            (0.2, 0.05, 0.7),
-            (-0.4, 0.05, -0.9),
-            (-0.97, 0.03, -0.5),
+            (-0.5, 0.03, -LARGEST_SKEWNESS, FULL_REACH),
+            (-0.5, 0.03, -0.3, FULL_REACH),
+            (-0.5, 0.03, 0.0, FULL_REACH),
+            (0.2, 0.05, 0.3, FULL_REACH),
+            (0.2, 0.05, LARGEST_SKEWNESS, FULL_REACH),
+            (0.2, 0.05, 0.7, FULL_REACH),
+            (-0.4, 0.05, -0.9, FULL_REACH),
+            (-0.97, 0.03, -0.5, FULL_REACH),
+            (-0.93, 0.03, 0.1, 0.99),
+            (-0.93, 0.03, 0.5, 0.98),
+            (0.9, 0.05, -0.3, 0.95),
         ]
         .into_iter()
-        .map(|(mean, sd, skewness): (f64, f64, f64)| {
+        .map(|(mean, sd, skewness, reach): (f64, f64, f64, f64)| {
             let skewed = SkewedSine {
                 moments: SineMoments {
                     mean,
                     variance: sd * sd,
                 },
                 skewness,
+                reach,
             };
             (skewed, SkewedSineLobe::new(skewed))
         })
@@ -839,6 +900,7 @@ mod tests {
                 variance: 1e-4,
             },
             skewness: 3.0,
+            reach: FULL_REACH,
         });
         let largest = SkewedSineLobe::new(SkewedSine {
             moments: SineMoments {
@@ -846,6 +908,7 @@ mod tests {
                 variance: 1e-4,
             },
             skewness: TWO_PIECE_LARGEST,
+            reach: FULL_REACH,
         });
         assert_eq!(clamped, largest);
     }
@@ -871,10 +934,10 @@ mod tests {
             (split.offset / split.part_sd - 2.0).abs() < 1e-7,
             "{split:?}"
         );
-        let at_the_cap = most_curved(SkewedSineLobe::split(0.0, 0.01, split));
+        let at_the_cap = most_curved(SkewedSineLobe::split(0.0, 0.01, split, FULL_REACH));
         assert!(at_the_cap < 1e-3, "{at_the_cap}");
         let beyond = SkewSplit::from_channels(1.2 * split.offset, 0.0, 0.0);
-        let bulge = most_curved(SkewedSineLobe::split(0.0, 0.01, beyond));
+        let bulge = most_curved(SkewedSineLobe::split(0.0, 0.01, beyond, FULL_REACH));
         assert!(bulge > 100.0, "{bulge}");
         for skewness in [0.1, 0.25, 0.3, LARGEST_SKEWNESS, 0.6, 0.9] {
             let lobe = SkewedSineLobe::new(SkewedSine {
@@ -883,22 +946,30 @@ mod tests {
                     variance: 1e-4,
                 },
                 skewness,
+                reach: FULL_REACH,
             });
             let curved = most_curved(lobe);
             assert!(curved < 1e-3, "γ {skewness}: {curved}");
         }
     }
 
-    /// The skewed lobe integrates to 1 where the pole cuts it, and its draws follow it.
+    /// The skewed lobe integrates to 1 where the pole or its reach cuts it, its draws follow
+    /// it, and it is 0 beyond its reach.
     #[test]
     fn skewed_draws_follow_the_density() {
         let rule = GaussLegendre::cached(64);
         for (skewed, lobe) in skewed_lobes() {
             let SineMoments { mean, variance } = skewed.moments;
+            let e = skewed.reach;
             let range = (
-                (mean - 8.0 * variance.sqrt()).max(-1.0),
-                (mean + 8.0 * variance.sqrt()).min(1.0),
+                (mean - 8.0 * variance.sqrt()).max(-e),
+                (mean + 8.0 * variance.sqrt()).min(e),
             );
+            if e < FULL_REACH {
+                let beyond = mean.signum() * (e + 1e-9);
+                assert_eq!(lobe.eval(beyond), 0.0, "{skewed:?}");
+                assert!(lobe.eval(mean.signum() * (e - 1e-9)) > 0.0, "{skewed:?}");
+            }
             let panels = 32;
             let step = (range.1 - range.0) / panels as f64;
             let total: f64 = (0..panels)

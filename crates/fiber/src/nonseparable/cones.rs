@@ -6,7 +6,7 @@ use crate::bravais::azimuthal_deflection;
 use crate::fresnel::fresnel_dielectric;
 use crate::nusselt::AtScale;
 use crate::nusselt::{self, Blocked, Nusselt};
-use crate::sine_lobe::{SineMoments, SkewedSine};
+use crate::sine_lobe::{FULL_REACH, SineMoments, SkewedSine};
 use crate::special::{asin_fast, sin_cos_quadrant, unit_normal_midpoints};
 use crate::tilted_attenuation::incident;
 use std::cell::Cell;
@@ -363,6 +363,7 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<Skewed
         // azimuthal slopes and the other offsets blur its edge): it counts by the square of
         // the share that leaves (departure 19).
         skewness: fade * sums.skewness() * (sums.weight / arriving).powi(2),
+        reach: FULL_REACH,
     })
 }
 

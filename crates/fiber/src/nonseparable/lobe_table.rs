@@ -26,20 +26,21 @@ const GRAZING: f64 = 1e-4;
 /// A lobe's shape as the table holds it: the exit's sine x and its width (module docs).
 pub type Shape = [f64; 2];
 
-/// TT's lobe at one (θ_i, |φ|): its [`Shape`] and how the skewness of its exit sine splits it
-/// (the tilted model's; no split in the paper's).
+/// TT's lobe at one (θ_i, |φ|): its [`Shape`], how the skewness of its exit sine splits it
+/// and its reach (the tilted model's; no split and the full reach in the paper's).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TtShape {
     pub shape: Shape,
     pub split: SkewSplit,
+    pub reach: f64,
 }
 
 /// The [`TtShape`] of TT over (θ_i, |φ|) and the [`Shape`] of TRT over θ_i.
 #[derive(Clone, Debug)]
 pub struct LobeTable {
-    /// Per cell x, width, and the split's mixture offset, two-piece asymmetry and two-piece
-    /// share ([`SkewSplit::from_channels`]).
-    tt: Vec<[f64; 5]>,
+    /// Per cell x, width, the split's mixture offset, two-piece asymmetry and two-piece
+    /// share ([`SkewSplit::from_channels`]), and the reach.
+    tt: Vec<[f64; 6]>,
     trt: Vec<[f64; 2]>,
 }
 
@@ -50,15 +51,16 @@ impl LobeTable {
         tt: impl Fn(f64, f64) -> TtShape + Sync,
         trt: impl Fn(f64) -> Shape + Sync,
     ) -> Self {
-        let mut rows = vec![[[0.0; 5]; PHI_NODES]; THETA_I_NODES];
+        let mut rows = vec![[[0.0; 6]; PHI_NODES]; THETA_I_NODES];
         fill_rows(&mut rows, 1, |i, row| {
             let theta_i = theta_i_at(i);
             for (k, cell) in row[0].iter_mut().enumerate() {
                 let TtShape {
                     shape: [x, w],
                     split,
+                    reach,
                 } = tt(theta_i, PI * k as f64 / (PHI_NODES - 1) as f64);
-                *cell = [x, w, split.offset, split.asymmetry, split.two_piece];
+                *cell = [x, w, split.offset, split.asymmetry, split.two_piece, reach];
             }
         });
         let mut trt_cells = vec![[0.0; 2]; THETA_I_NODES];
@@ -77,15 +79,16 @@ impl LobeTable {
         let (fi, fk) = (fi as f64, fk as f64);
         let at = i0 * PHI_NODES + k0;
         let next = at + PHI_NODES;
-        let lerp = |a: [f64; 5], b: [f64; 5], f: f64| -> [f64; 5] {
+        let lerp = |a: [f64; 6], b: [f64; 6], f: f64| -> [f64; 6] {
             std::array::from_fn(|l| a[l] + f * (b[l] - a[l]))
         };
         let low = lerp(self.tt[at], self.tt[at + 1], fk);
         let high = lerp(self.tt[next], self.tt[next + 1], fk);
-        let [x, w, offset, asymmetry, share] = lerp(low, high, fi);
+        let [x, w, offset, asymmetry, share, reach] = lerp(low, high, fi);
         TtShape {
             shape: [x, w],
             split: SkewSplit::from_channels(offset, asymmetry, share),
+            reach,
         }
     }
 

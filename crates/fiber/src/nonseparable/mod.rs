@@ -89,7 +89,8 @@
 //!   the offset whose exit leaves at φ through the tilted scales, [`tilted_tt_offset`],
 //!   departure 14). Its mean, spread and skewness are that light's, or, where the pole cuts
 //!   the light and the lobe of its moments misses it, the ones whose lobe lies nearest it
-//!   (departure 27).
+//!   (departure 27), ending where that light ends short of the pole, at the exit scale's
+//!   horizon (its reach; departure 28).
 //! - Each M still integrates to 1, so ∫ S dω is what [`NonSeparable::lobe_energies`] says
 //!   (1 minus the losses at μ_a = 0, R's off the rough surface), not 1.
 //!
@@ -123,7 +124,7 @@ use crate::longitudinal::{ConeLobe, LongitudinalLobe};
 use crate::model::{FiberModel, FiberSample, select_and_remap};
 use crate::nusselt;
 use crate::params::{FiberParams, ParamError};
-use crate::sine_lobe::{SineMoments, SkewSplit, SkewedSine, SkewedSineLobe};
+use crate::sine_lobe::{FULL_REACH, SineMoments, SkewSplit, SkewedSine, SkewedSineLobe};
 use crate::special::{asin_fast, cos_quadrant, sin_cos_quadrant};
 use crate::tilted_attenuation::incident;
 use crate::tilted_attenuation::{TiltedAttenuation, energy_budget};
@@ -472,15 +473,18 @@ impl NonSeparable {
                 let SkewedSine {
                     moments: SineMoments { mean, variance },
                     skewness,
+                    reach,
                 } = self.tt_moments(theta_i, phi);
                 lobe_table::TtShape {
                     shape: [mean, variance.sqrt()],
                     split: SkewSplit::new(skewness),
+                    reach,
                 }
             }
             Scales::Paper => lobe_table::TtShape {
                 shape: self.lobe_shape(1, theta_i, phi),
                 split: SkewSplit::new(0.0),
+                reach: FULL_REACH,
             },
         }
     }
@@ -503,12 +507,13 @@ impl NonSeparable {
             return SkewedSine {
                 moments: tt_lobe_rough(theta_i, alpha, eta, beta, self.tt_offset(theta_i, phi)),
                 skewness: self.tt_skewness(theta_i),
+                reach: FULL_REACH,
             };
         };
         let column = table.column_sine(theta_i, phi);
         SkewedSine {
             moments: SkewedSineLobe::matched(column),
-            skewness: column.skewness,
+            ..column
         }
     }
 
@@ -561,8 +566,9 @@ impl NonSeparable {
                 let lobe_table::TtShape {
                     shape: [mean, sd],
                     split,
+                    reach,
                 } = table.tt(theta_i, phi);
-                SkewedSineLobe::split(mean, sd, split)
+                SkewedSineLobe::split(mean, sd, split, reach)
             }
             None => self.tt_sine_lobe_exact(theta_i, phi),
         }
@@ -832,11 +838,12 @@ impl NonSeparable {
     }
 }
 
-/// The von Mises–Fisher lobe with a sine lobe's mean and variance of sin θ_o to first order:
-/// where [`NonSeparable::longitudinal`] describes the tilted model's TT lobe, whose shape is
-/// the [`SkewedSineLobe`], by a cone and a width in θ.
+/// The von Mises–Fisher lobe with a sine lobe's mean and variance of sin θ_o to first order,
+/// those of its light as truncated (to the pole or its reach): where
+/// [`NonSeparable::longitudinal`] describes the tilted model's TT lobe, whose shape is the
+/// [`SkewedSineLobe`], by a cone and a width in θ.
 fn cone_of_sine_lobe(lobe: SkewedSineLobe) -> LongitudinalLobe {
-    let SineMoments { mean, variance } = lobe.moments();
+    let SineMoments { mean, variance } = lobe.truncated_moments();
     LongitudinalLobe::new(
         cones::variance_from_sine_spread(mean, variance),
         asin_fast(mean.clamp(-1.0, 1.0)),
@@ -947,11 +954,12 @@ mod tests {
     /// their widths √v. Measured: cones within 6.7e-3 rad (TT, at kinks of the Nusselt
     /// rotations near grazing exits) and 2.5e-3 rad (TRT), 7e-6 rad on average; widths within
     /// 2.3e-3 (the paper's TT) and 1e-6 (TRT). The tilted TT lobe, Gaussian in its exit sine
-    /// (departure 19), is compared as the cone of the same moments ([`cone_of_sine_lobe`])
-    /// against its exact twin ([`NonSeparable::tt_sine_lobe_exact`], no lobe-table read): its
-    /// cone within 9.6e-3 rad, 8e-6 on average; its width within 0.12, 8.2e-5 on average,
-    /// the worst near grazing incidence, where the columns (read there too since departure 25,
-    /// and fitted to their light since departure 27) change fastest with θ_i. The tilted TRT
+    /// (departure 19), is compared as the cone of the same truncated moments
+    /// ([`cone_of_sine_lobe`]) against its exact twin ([`NonSeparable::tt_sine_lobe_exact`],
+    /// no lobe-table read): its cone within 6.6e-3 rad, 2.2e-5 on average; its width within
+    /// 0.19, 3.7e-4 on average, the worst at |θ_i| > 1.45, where the columns (read there too
+    /// since departure 25, fitted to their light since departure 27, with the reach that ends
+    /// them since departure 28) change fastest with θ_i and the lobes are narrowest. The tilted TRT
     /// lobe averages over the offsets whose smooth path leaves, which start and stop leaving at kinks in θ_i
     /// (departure 16), and is cut by the paths that leave at h = 0 on a grid of tilts
     /// (departure 17), whose share narrows it up to a kink: its cone within 1.8e-3 rad
@@ -1012,7 +1020,7 @@ mod tests {
             );
             assert!(worst[0] < 0.01 && worst[1] < 4e-3, "{worst:?}");
             assert!(mean[0] < 4e-5 && mean[1] < 5e-5, "{mean:?}");
-            assert!(width[0] < 0.15 && width[1] < 0.05, "{width:?}");
+            assert!(width[0] < 0.25 && width[1] < 0.05, "{width:?}");
             assert!(
                 width_mean[0] < 5e-4 && width_mean[1] < 5e-4,
                 "{width_mean:?}"
