@@ -42,7 +42,7 @@ pub struct SkewedSine {
 /// The reach of a lobe that only the poles end: x ∈ [−1, 1].
 pub const FULL_REACH: f64 = 1.0;
 
-/// Standard deviations between the mean and the nearer end of [−1, 1] beyond which the
+/// Standard deviations between the mean and the nearer end of [−e, e] beyond which the
 /// truncation is below f64's resolution of Z (Φ(−8.3) = 5e-17).
 const UNTRUNCATED: f64 = 8.3;
 
@@ -91,7 +91,7 @@ impl SineLobe {
     }
 
     /// The lobe with mean μ and standard deviation σ of its untruncated Gaussian, truncated
-    /// to [−e, e] (e the reach, clamped to (0, 1]).
+    /// to [−e, e] (e the reach, at most 1 and at least `LEAST_REACH`).
     #[inline]
     pub fn with_sd(mean: f64, sd: f64, reach: f64) -> Self {
         let sd = sd.max(MIN_VARIANCE.sqrt());
@@ -176,7 +176,8 @@ fn end_distances(mean: f64, inv_sd: f64, reach: f64) -> [f64; 2] {
     [(reach - mean.abs()) * inv_sd, (reach + mean.abs()) * inv_sd]
 }
 
-/// The least reach a lobe takes: a hundredth of the sphere's sines, far inside any light.
+/// The least reach a lobe takes: a guard for degenerate input (the fitted reaches lie beyond
+/// their lobes' |mean|, near 1).
 const LEAST_REACH: f64 = 0.01;
 
 /// A reach in [`LEAST_REACH`], [`FULL_REACH`] (NaN to the full reach).
@@ -328,7 +329,7 @@ impl TwoPiece {
     }
 
     /// The two-piece normal of untruncated mean μ, deviation σ and asymmetry r, truncated to
-    /// [−e, e] (e in (0, 1]).
+    /// [−e, e] (e already clamped).
     #[inline]
     fn new(mean: f64, sd: f64, r: f64, reach: f64) -> Self {
         let r = r.clamp(-0.999, 0.999);
@@ -460,7 +461,7 @@ impl SkewedSineLobe {
     }
 
     /// The lobe of mean μ and standard deviation σ split as `split` says, truncated to
-    /// [−e, e] (e the reach, clamped to (0, 1]).
+    /// [−e, e] (e the reach, at most 1 and at least `LEAST_REACH`).
     #[inline]
     pub fn split(mean: f64, sd: f64, split: SkewSplit, reach: f64) -> Self {
         let reach = clamp_reach(reach);
