@@ -36,6 +36,7 @@ pub mod params;
 pub mod ranges;
 pub mod rough_deflection;
 pub mod rough_interface;
+pub mod rough_trt;
 pub mod sine_lobe;
 pub mod special;
 pub mod table;

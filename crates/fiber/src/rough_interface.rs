@@ -287,6 +287,25 @@ pub(crate) fn refraction_at(v: DVec3, m: DVec3, beta: f64, eta: f64) -> Option<(
     Some((travel, weight))
 }
 
+/// The direction light arriving along `v` (pointing away, v.z > 0) reflects into off the
+/// micro-normal m of a surface of relative index η (1/η from inside), and its weight
+/// (v·m) G1(v, m) G1(r, m) F / (v.z m.z), the reflecting twin of [`refraction_at`] (Walter et
+/// al. 2007 eq. 41 with the micro-normal drawn from D(m) m·n); none where m faces away or the
+/// mirror direction r = 2(v·m)m − v points into the surface.
+pub(crate) fn reflection_at(v: DVec3, m: DVec3, beta: f64, eta: f64) -> Option<(DVec3, f64)> {
+    let c = v.dot(m);
+    if c <= 0.0 {
+        return None;
+    }
+    let r = 2.0 * c * m - v;
+    if r.z <= 0.0 {
+        return None;
+    }
+    let f = fresnel_dielectric(c, eta);
+    let weight = c * smith_g1(v.z, c, beta) * smith_g1(r.z, c, beta) * f / (v.z * m.z);
+    Some((r, weight))
+}
+
 /// The inside table after 0…[`SPREAD_REFLECTIONS`] reflections: the first averaged over the
 /// arriving directions a spread of 2·slope per reflection gives.
 fn inside_tables(base: AlbedoTable, beta: f64) -> Vec<AlbedoTable> {
