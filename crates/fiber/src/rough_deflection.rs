@@ -211,8 +211,6 @@ impl RoughExit {
 /// Nodes over θ_i ∈ [−π/2, π/2] and over γ = asin |h| ∈ [0, π/2].
 const THETA_I_NODES: usize = 129;
 const GAMMA_NODES: usize = 65;
-/// The end nodes are evaluated this far inside ±π/2.
-const GRAZING: f64 = 1e-4;
 
 /// What a rough surface makes of TT's azimuth at one (θ_i, h): the shift from Bravais' Φ(1, h)
 /// at θ_d = −θ_i to the mean exit's φ, and the standard deviation in φ.
@@ -583,12 +581,11 @@ fn bravais(eta: f64, theta_i: f64, h: f64) -> f64 {
 }
 
 fn theta_i_at(i: usize) -> f64 {
-    (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
-        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+    crate::table::theta_i_node(i, THETA_I_NODES)
 }
 
 fn gamma_at(k: usize) -> f64 {
-    (FRAC_PI_2 * k as f64 / (GAMMA_NODES - 1) as f64).min(FRAC_PI_2 - GRAZING)
+    (FRAC_PI_2 * k as f64 / (GAMMA_NODES - 1) as f64).min(FRAC_PI_2 - crate::table::GRAZING)
 }
 
 #[cfg(test)]

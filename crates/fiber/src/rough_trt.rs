@@ -124,8 +124,6 @@ pub fn rough_trt_sine(
 
 /// Nodes over θ_i ∈ [−π/2, π/2].
 const THETA_I_NODES: usize = 129;
-/// The end nodes are evaluated this far inside ±π/2.
-const GRAZING: f64 = 1e-4;
 
 /// [`rough_trt_sine`] over θ_i for one fiber (η, α, β), by [`TRT_RULE`]; a node where no light
 /// leaves holds NaN, and a read there gives `None`.
@@ -168,8 +166,7 @@ impl RoughTrtTable {
 }
 
 fn theta_i_at(i: usize) -> f64 {
-    (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
-        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+    crate::table::theta_i_node(i, THETA_I_NODES)
 }
 
 #[cfg(test)]

@@ -23,7 +23,7 @@ use crate::lobe::LobeValues;
 use crate::special::{GaussLegendre, normal_pdf};
 use energy::{ENERGY_NODES, LobeEnergies, normalise_rows};
 use glam::{DVec3, DVec4, Vec4};
-use std::f64::consts::PI;
+use std::f64::consts::{FRAC_PI_2, PI};
 
 const THETA_I_NODES: usize = 64;
 const THETA_D_NODES: usize = 32;
@@ -623,6 +623,16 @@ fn theta_i_coord(theta_i: f64) -> f64 {
     let t = (theta_i.abs() * (2.0 / PI)).min(1.0);
     let x = t / (1.0 + (1.0 - t).sqrt());
     0.5 + 0.5 * x.copysign(theta_i)
+}
+
+/// How far inside ±π/2 the end nodes of an evenly spaced θ_i axis are evaluated: at the poles
+/// the fiber's frame degenerates.
+pub(crate) const GRAZING: f64 = 1e-4;
+
+/// Node i of `nodes` evenly spaced over θ_i ∈ [−π/2, π/2], the ends [`GRAZING`] inside.
+pub(crate) fn theta_i_node(i: usize, nodes: usize) -> f64 {
+    (-FRAC_PI_2 + PI * i as f64 / (nodes - 1) as f64)
+        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
 }
 
 /// The lower node and the fraction toward the next for a coordinate t ∈ [0, 1] on n nodes.

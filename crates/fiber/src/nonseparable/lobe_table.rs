@@ -20,8 +20,6 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// rotations' clamped square roots put kinks into x.
 const THETA_I_NODES: usize = 1025;
 const PHI_NODES: usize = 129;
-/// The end nodes of θ_i are evaluated this far inside ±π/2.
-const GRAZING: f64 = 1e-4;
 
 /// A lobe's shape as the table holds it: the exit's sine x and its width (module docs).
 pub type Shape = [f64; 2];
@@ -103,8 +101,7 @@ impl LobeTable {
 }
 
 fn theta_i_at(i: usize) -> f64 {
-    (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
-        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+    crate::table::theta_i_node(i, THETA_I_NODES)
 }
 
 #[inline]

@@ -24,8 +24,6 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// Nodes over θ_i ∈ [−π/2, π/2] and over |φ| ∈ [0, reach].
 const THETA_I_NODES: usize = 513;
 const PHI_NODES: usize = 257;
-/// The end nodes of θ_i are evaluated this far inside ±π/2.
-const GRAZING: f64 = 1e-4;
 
 /// What R's longitudinal lobe takes from its mirror: the sine of the mirror's inclination (the
 /// cone) and its spread at fixed φ (the width).
@@ -171,8 +169,7 @@ fn reach_of_phi(theta_i: f64, sin_2alpha: f64) -> f64 {
 }
 
 fn theta_i_at(i: usize) -> f64 {
-    (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
-        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+    crate::table::theta_i_node(i, THETA_I_NODES)
 }
 
 #[cfg(test)]

@@ -22,8 +22,6 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// Nodes over θ_i ∈ [−π/2, π/2] and over h ∈ [−1, 1].
 const THETA_I_NODES: usize = 257;
 const H_NODES: usize = 513;
-/// The end nodes of θ_i are evaluated this far inside ±π/2.
-const GRAZING: f64 = 1e-4;
 
 /// The largest miss of a cell's blend at its centre, in radians of φ: a twentieth of TT's
 /// azimuthal standard deviation β/√2 at the smallest roughness the model takes (β = 0.0025),
@@ -98,8 +96,7 @@ impl ShiftTable {
 }
 
 fn theta_i_at(i: usize) -> f64 {
-    (-FRAC_PI_2 + PI * i as f64 / (THETA_I_NODES - 1) as f64)
-        .clamp(-FRAC_PI_2 + GRAZING, FRAC_PI_2 - GRAZING)
+    crate::table::theta_i_node(i, THETA_I_NODES)
 }
 
 /// h at (fractional) node k.
