@@ -61,10 +61,21 @@ pub fn rough_trt_sine(
 ) -> Option<SineMoments> {
     let tilt = Tilt::new(alpha);
     let sd = beta * FRAC_1_SQRT_2;
-    // The micro-normal of unit-law slopes `m` on this surface.
-    let normal = |m: &Slope| DVec3::new(-sd * m.x, -sd * m.y, 1.0).normalize();
-    let slopes = [rule.entry, rule.reflection, rule.exit].map(lattice_slopes);
-    let [entries, reflections, exits] = &slopes;
+    // Each event's micro-normals (unit-law slopes on this surface) with their weights, found
+    // once for every path that meets them.
+    let normals = |n: usize| -> Vec<(DVec3, f64)> {
+        let normal = |m: &Slope| DVec3::new(-sd * m.x, -sd * m.y, 1.0).normalize();
+        lattice_slopes(n)
+            .iter()
+            .map(|m| (normal(m), m.weight))
+            .collect()
+    };
+    let [entries, reflections, exits] = [rule.entry, rule.reflection, rule.exit].map(normals);
+    // A direction leaving a scale's frame, carried across the fiber to the next scale.
+    let onward = |at: &AtScale, d: DVec3| {
+        at.leaving(d)
+            .and_then(|chord| AtScale::inside(tilt, nusselt::propagate(chord)))
+    };
     let mut sums = [0.0f64; 3];
     for k in 0..OFFSETS {
         let gamma = FRAC_PI_2 * (k as f64 + 0.5) / OFFSETS as f64;
@@ -72,39 +83,32 @@ pub fn rough_trt_sine(
             continue;
         };
         let dh = gamma.cos();
-        for a in entries.iter() {
-            let Some((into, w_in)) = refraction_at(entry.arriving(), normal(a), beta, eta) else {
+        for &(m_in, weight_in) in &entries {
+            let Some((into, w_in)) = refraction_at(entry.arriving(), m_in, beta, eta) else {
                 continue;
             };
-            let Ok(back) = entry
-                .leaving(into)
-                .and_then(|chord| AtScale::inside(tilt, nusselt::propagate(chord)))
-            else {
+            let Ok(back) = onward(&entry, into) else {
                 continue;
             };
-            let w_in = w_in * a.weight * dh;
-            for b in reflections.iter() {
-                let arriving = back.arriving();
-                let Some((turned, w_back)) = reflection_at(arriving, normal(b), beta, 1.0 / eta)
-                else {
+            let w_in = w_in * weight_in * dh;
+            for &(m_back, weight_back) in &reflections {
+                let turned = reflection_at(back.arriving(), m_back, beta, 1.0 / eta);
+                let Some((turned, w_back)) = turned else {
                     continue;
                 };
-                let Ok(exit) = back
-                    .leaving(turned)
-                    .and_then(|chord| AtScale::inside(tilt, nusselt::propagate(chord)))
-                else {
+                let Ok(exit) = onward(&back, turned) else {
                     continue;
                 };
-                let w_back = w_in * w_back * b.weight;
-                for c in exits.iter() {
-                    let out = refraction_at(exit.arriving(), normal(c), beta, 1.0 / eta);
+                let w_back = w_in * w_back * weight_back;
+                for &(m_out, weight_out) in &exits {
+                    let out = refraction_at(exit.arriving(), m_out, beta, 1.0 / eta);
                     let Some((out, w_out)) = out else {
                         continue;
                     };
                     let Ok((x, _)) = exit.leaving(out) else {
                         continue;
                     };
-                    let w = w_back * w_out * c.weight;
+                    let w = w_back * w_out * weight_out;
                     sums = [sums[0] + w, sums[1] + w * x, sums[2] + w * x * x];
                 }
             }

@@ -975,11 +975,12 @@ mod tests {
     /// no lobe-table read): its cone within 6.6e-3 rad, 2.2e-5 on average; its width within
     /// 0.19, 3.7e-4 on average, the worst at |θ_i| > 1.45, where the columns (read there too
     /// since departure 25, fitted to their light since departure 27, with the reach that ends
-    /// them since departure 28) change fastest with θ_i and the lobes are narrowest. The tilted TRT
-    /// lobe, read from the rough quadrature's moments, linear in θ_i on both paths (departure
-    /// 29), differs only by the lobe table's own interpolation: its cone within 4.1e-5 rad, its
-    /// width within 1.3e-4 (before it, averaged over the offsets whose smooth path leaves and
-    /// cut at h = 0, departures 16 and 17, with kinks in θ_i: 1.8e-3 and 2.3e-2).
+    /// them since departure 28) change fastest with θ_i and the lobes are narrowest. The
+    /// tilted TRT lobe, read from the rough quadrature's moments, linear in θ_i on both paths
+    /// (departure 29), differs only by the lobe table's own interpolation: its cone within
+    /// 4.1e-5 rad, its width within 1.3e-4 (before it, averaged over the offsets whose smooth
+    /// path leaves and cut at h = 0, departures 16 and 17, with kinks in θ_i: 1.8e-3 and
+    /// 2.3e-2).
     #[test]
     fn lobe_table_follows_the_exact_lobes() {
         for (scales, alpha_deg) in [
