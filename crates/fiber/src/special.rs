@@ -571,7 +571,8 @@ pub fn exp_reduced_f32(r: f32x4) -> f32x4 {
 #[inline(always)]
 pub fn i0_as_lanes_f32(x: f32x4) -> f32x4 {
     let t = x * f32x4::splat((1.0 / I0_AS_SPLIT) as f32);
-    estrin7_lanes_f32(&I0_AS_COEFFS.map(|c| c as f32), t * t)
+    const COEFFS: [f32; 7] = to_f32(I0_AS_COEFFS);
+    estrin7_lanes_f32(&COEFFS, t * t)
 }
 
 /// [`i0_scaled_as`] in each of four lanes, in single precision, with one division: q = 1/x,
@@ -580,7 +581,20 @@ pub fn i0_as_lanes_f32(x: f32x4) -> f32x4 {
 pub fn i0_scaled_as_lanes_f32(x: f32x4) -> f32x4 {
     let q = f32x4::ONE / x;
     let y = q * f32x4::splat(I0_AS_SPLIT as f32);
-    estrin9_lanes_f32(&I0_SCALED_AS_COEFFS.map(|c| c as f32), y) * q.sqrt()
+    const COEFFS: [f32; 9] = to_f32(I0_SCALED_AS_COEFFS);
+    estrin9_lanes_f32(&COEFFS, y) * q.sqrt()
+}
+
+/// Coefficients rounded to single precision when the crate compiles: as constants, the lanes'
+/// splats load them from memory where an array rounded at run time went through the stack.
+const fn to_f32<const N: usize>(c: [f64; N]) -> [f32; N] {
+    let mut out = [0.0; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = c[i] as f32;
+        i += 1;
+    }
+    out
 }
 
 /// Four doubles rounded to single precision.
