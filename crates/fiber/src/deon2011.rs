@@ -133,6 +133,20 @@ impl DEon2011 {
         }
     }
 
+    /// [`DEon2011::azimuthal_beyond_r`] under the selection weighting, whose N_p are grey: one
+    /// number per lobe, the first channel of each (the same bits), for a density that adds
+    /// numbers where the lobes' total adds colours.
+    pub(crate) fn selection_beyond_r(&self, theta_i: f64, theta_d: f64, phi: f64) -> [f64; 4] {
+        match &self.table {
+            Some(t) => t.selection_beyond_r(theta_i, theta_d, phi),
+            None => std::array::from_fn(|k| {
+                self.azimuthal
+                    .eval(k + 1, theta_i, theta_d, phi, Weighting::Selection)
+                    .x
+            }),
+        }
+    }
+
     /// [`DEon2011::azimuthal_beyond_r`] under both weightings, (attenuation, selection): the
     /// table's texels read once.
     pub(crate) fn azimuthal_beyond_r_both(

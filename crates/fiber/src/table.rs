@@ -199,6 +199,13 @@ impl AzimuthalTable {
         }
     }
 
+    /// [`AzimuthalTable::eval_beyond_r`]'s selection densities, one number per lobe.
+    #[inline]
+    pub fn selection_beyond_r(&self, theta_i: f64, theta_d: f64, phi: f64) -> [f64; 4] {
+        self.selection_taps(self.point(theta_i, self.eta_ratio(theta_d), phi))
+            .map(f64::from)
+    }
+
     /// [`AzimuthalTable::eval_beyond_r`] under both weightings from one read of the texels:
     /// (attenuation, selection).
     pub fn eval_beyond_r_both(

@@ -796,8 +796,20 @@ impl NonSeparable {
             let r = self.azimuthal_r(&pair, wi.theta, weighting);
             LobeValues::separable(pair.m, [r, tt, trt, trrt, rest])
         };
-        let pdf = lobes(Weighting::Selection, sel).total().x;
+        let pdf = self.density_total(&pair, wi.theta, sel.map(|n| n.x));
         (lobes(Weighting::Attenuation, s), pdf)
+    }
+
+    /// The sampling density Σ_p M_p N_p from TT's, TRT's, TRRT's and the remainder's selection
+    /// densities `beyond_r`, R's found here: the first channel of [`NonSeparable::density`]'s
+    /// total under the selection weighting (its N_p are grey), added in the same order, so the
+    /// same bits, without carrying the other two channels through.
+    #[inline]
+    fn density_total(&self, pair: &Pair, theta_i: f64, beyond_r: [f64; 4]) -> f64 {
+        let r = self.azimuthal_r(pair, theta_i, Weighting::Selection).x;
+        let [tt, trt, trrt, rest] = beyond_r;
+        let m = pair.m;
+        m[0] * r + m[1] * tt + m[2] * trt + m[3] * trrt + m[3] * rest
     }
 
     /// What tilted scales add to Φ(p, h) of TT and TRT
@@ -955,7 +967,11 @@ impl FiberModel for NonSeparable {
     /// below. Offsets whose every path the tilted scales lose are never drawn, so there the
     /// density integrates to the share of offsets that send light somewhere, below 1.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {
-        self.density(wi, wo, Weighting::Selection).total().x
+        let pair = self.pair(wi, wo);
+        let beyond_r = self
+            .deon
+            .selection_beyond_r(wi.theta, pair.theta_d, pair.phi);
+        self.density_total(&pair, wi.theta, beyond_r)
     }
 }
 
