@@ -165,7 +165,7 @@ pub fn sin_cos_quadrant(x: f64) -> (f64, f64) {
 
 /// Two polynomials of [`estrin9`] at one x, one in each lane of a register: the same
 /// operations in the same order (multiplies and adds, never fused), so each lane is bit for
-/// bit its scalar twin (`sin_cos_quadrant_matches_the_library`), at the cost of about one.
+/// bit its scalar twin (`sin_cos_quadrant_matches_the_library`), for about the cost of one.
 #[inline(always)]
 fn estrin9_pair(a: &[f64; 9], b: &[f64; 9], x: f64) -> f64x2 {
     let c = |i: usize| f64x2::new([a[i], b[i]]);

@@ -194,8 +194,8 @@ impl AzimuthalTable {
                 .beyond_r_taps(theta_i, theta_d, phi)
                 .map(|v| v.truncate().as_dvec3()),
             Weighting::Selection => self
-                .selection_taps(self.point(theta_i, self.eta_ratio(theta_d), phi))
-                .map(|w| DVec3::splat(w as f64)),
+                .selection_beyond_r(theta_i, theta_d, phi)
+                .map(DVec3::splat),
         }
     }
 
