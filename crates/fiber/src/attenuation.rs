@@ -138,6 +138,29 @@ pub fn mean_total_attenuation_at_h_sq(inc: Inclination, f: f64, h_sq: f64, mu_a:
     f + k * (x + y + z) / 3.0
 }
 
+/// R's lobe-selection probability f / mean_c(Σ_p A_p) for a Fresnel factor f the caller
+/// already has, from h²: the quotient of f by [`mean_total_attenuation_at_h_sq`] over one
+/// common denominator. With D_c = 1 − f T_c, Σ_c T_c / D_c = Q / P for P = D_r D_g D_b and
+/// Q = T_r D_g D_b + T_g D_r D_b + T_b D_r D_g, so f / (f + k Q / 3P) = 3fP / (3fP + kQ),
+/// k = (1 − f)²: one division where the mean and the quotient took one after the other
+/// (`r_selection_is_f_over_the_mean_total`). Where no light leaves (the denominator
+/// vanishes: a lossless fiber at grazing incidence, f T = 1, or an opaque one at f = 0) it is
+/// the quotient of the mean itself.
+#[inline]
+pub fn r_selection_at_h_sq(inc: Inclination, f: f64, h_sq: f64, mu_a: DVec3) -> f64 {
+    let t = transmittance(mu_a, inc.chord_from_h_sq(h_sq));
+    let [tr, tg, tb, _] = t.to_array();
+    let [dr, dg, db, _] = (f64x4::ONE - f64x4::splat(f) * t).to_array();
+    let k = (1.0 - f) * (1.0 - f);
+    let fp = 3.0 * f * (dr * dg * db);
+    let denominator = fp + k * (tr * (dg * db) + tg * (dr * db) + tb * (dr * dg));
+    if denominator > 1e-300 {
+        return fp / denominator;
+    }
+    let total = mean_total_attenuation_at_h_sq(inc, f, h_sq, mu_a);
+    if total > 0.0 { f / total } else { 0.0 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -215,5 +238,30 @@ mod tests {
                 assert!((total - want).abs() < 1e-14 * want, "{total} {want}");
             }
         }
+    }
+
+    /// R's selection over one common denominator is f over the mean total, at every
+    /// inclination and offset, absorbing or not, and at the limits where no light leaves.
+    #[test]
+    fn r_selection_is_f_over_the_mean_total() {
+        for mu in [DVec3::ZERO, DVec3::new(0.2, 0.5, 1.3), DVec3::splat(40.0)] {
+            for theta in [-1.5, -0.6, 0.0, 0.4, 1.3, 1.57] {
+                let inc = Inclination::new(theta, 1.55);
+                for h in [-1.0, -0.99, -0.3, 0.0, 0.5, 0.999, 1.0] {
+                    let (f, total) = mean_total_attenuation(inc, h, mu);
+                    let got = r_selection_at_h_sq(inc, f, h * h, mu);
+                    let want = f / total;
+                    assert!(
+                        (got - want).abs() <= 2e-15 * want,
+                        "{mu} {theta} {h}: {got} {want}"
+                    );
+                }
+            }
+        }
+        // Every channel reflects all it transmits: nothing but R leaves.
+        let inc = Inclination::new(0.3, 1.55);
+        assert_eq!(r_selection_at_h_sq(inc, 1.0, 1.0, DVec3::ZERO), 1.0);
+        // Nothing reflects and nothing is transmitted: R is never chosen.
+        assert_eq!(r_selection_at_h_sq(inc, 0.0, 0.0, DVec3::splat(1e6)), 0.0);
     }
 }

@@ -15,7 +15,7 @@
 //! Reciprocity: M with a cone at −θ_i + shift is not symmetric under exchanging ω_i and ω_o
 //! (d'Eon et al. 2014 says so of eq. 5), and A is taken at θ_i: the model is not reciprocal.
 
-use crate::attenuation::{Inclination, attenuation_at, mean_total_attenuation_at_h_sq};
+use crate::attenuation::{Inclination, attenuation_at, r_selection_at_h_sq};
 use crate::azimuthal::{AzimuthalScattering, Weighting, selection_from};
 use crate::bravais::{azimuthal_deflection, eta_prime};
 use crate::frame::{FiberAngles, wrap_pi};
@@ -275,8 +275,7 @@ impl DEon2011 {
     fn pair_pdf_with<T>(&self, pair: &Pair<T>, selection: [f32; 4], f: f64) -> f64 {
         let c = pair.cos_half_phi;
         let h_sq = (1.0 - c * c).clamp(0.0, 1.0);
-        let total = mean_total_attenuation_at_h_sq(pair.inclination, f, h_sq, self.params.mu_a);
-        let sel_r = if total > 0.0 { f / total } else { 0.0 };
+        let sel_r = r_selection_at_h_sq(pair.inclination, f, h_sq, self.params.mu_a);
         let [t1, t2, t3, rest] = selection;
         let m = pair.m;
         m[0] * (0.25 * c * sel_r)
