@@ -780,11 +780,6 @@ impl NonSeparable {
         }
     }
 
-    fn density(&self, wi: FiberAngles, wo: FiberAngles, weighting: Weighting) -> LobeValues {
-        let pair = self.pair(wi, wo);
-        LobeValues::separable(pair.m, self.azimuthal_at(&pair, wi.theta, weighting))
-    }
-
     /// S and the sampling density of one pair together, R's offsets and the M_p found once: the
     /// same arithmetic as [`FiberModel::eval`] and [`FiberModel::pdf`], so identical results.
     fn eval_and_pdf(&self, wi: FiberAngles, wo: FiberAngles) -> (LobeValues, f64) {
@@ -801,9 +796,8 @@ impl NonSeparable {
     }
 
     /// The sampling density Σ_p M_p N_p from TT's, TRT's, TRRT's and the remainder's selection
-    /// densities `beyond_r`, R's found here: the first channel of [`NonSeparable::density`]'s
-    /// total under the selection weighting (its N_p are grey), added in the same order, so the
-    /// same bits, without carrying the other two channels through.
+    /// densities `beyond_r`, R's found here: under the selection weighting every N_p is grey,
+    /// so the density adds numbers, in the order [`LobeValues::total`] adds the lobes.
     #[inline]
     fn density_total(&self, pair: &Pair, theta_i: f64, beyond_r: [f64; 4]) -> f64 {
         let r = self.azimuthal_r(pair, theta_i, Weighting::Selection).x;
@@ -902,7 +896,9 @@ impl FiberModel for NonSeparable {
     }
 
     fn eval(&self, wi: FiberAngles, wo: FiberAngles) -> LobeValues {
-        self.density(wi, wo, Weighting::Attenuation)
+        let pair = self.pair(wi, wo);
+        let n = self.azimuthal_at(&pair, wi.theta, Weighting::Attenuation);
+        LobeValues::separable(pair.m, n)
     }
 
     /// Samples h and p as d'Eon 2013 does; R, TRRT and the remainder are then sampled directly,
