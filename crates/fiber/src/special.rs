@@ -334,17 +334,32 @@ pub fn ln_fast(x: f64) -> f64 {
     if !(f64::MIN_POSITIVE..f64::INFINITY).contains(&x) {
         return x.ln();
     }
-    let bits = x.to_bits();
-    let mut k = ((bits >> 52) as i64) - 1023;
-    let mut m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
-    if m > std::f64::consts::SQRT_2 {
-        m *= 0.5;
-        k += 1;
-    }
+    let LnReduced { k, m } = ln_reduce(x);
     let f = (m - 1.0) / (m + 1.0);
     let t = f * f;
-    let k = k as f64;
     k * LN2_HI + (2.0 * f + (2.0 * f * t * estrin7(&LN_FIT, t) + k * LN2_LO))
+}
+
+/// A positive normal x as 2ᵏ m, m ∈ (√½, √2]: [`ln_fast`]'s range reduction.
+struct LnReduced {
+    k: f64,
+    m: f64,
+}
+
+/// Splits a positive normal x into [`LnReduced`] without a branch: adding 2⁵² − M₊ to the bits,
+/// M₊ the mantissa field just above √2's, carries into the exponent exactly where the mantissa
+/// 1.M exceeds √2, and adding 0x3fe·2⁵² + M₊ to the low bits then gives back 1.M, or 1.M / 2 where
+/// it carried. The same k and m as halving m > √2 by a test, which a random x mispredicts
+/// half the time (the simulator's Beckmann sampler takes ln of a uniform variate).
+#[inline(always)]
+fn ln_reduce(x: f64) -> LnReduced {
+    const MANTISSA: u64 = 0x000f_ffff_ffff_ffff;
+    const ABOVE_SQRT_2: u64 = (std::f64::consts::SQRT_2.to_bits() & MANTISSA) + 1;
+    let bits = x.to_bits() + (MANTISSA + 1 - ABOVE_SQRT_2);
+    LnReduced {
+        k: (((bits >> 52) as i64) - 1023) as f64,
+        m: f64::from_bits((bits & MANTISSA) + ((0x3fe << 52) | ABOVE_SQRT_2)),
+    }
 }
 
 /// 2^(j/32), j = 0…31, correctly rounded (50-digit decimal arithmetic): [`exp_fast`]'s table.
@@ -1298,6 +1313,31 @@ mod tests {
             assert_eq!(ln_fast(x).to_bits(), x.ln().to_bits(), "{x}");
         }
         assert!(ln_fast(f64::NAN).is_nan());
+    }
+
+    /// The branch-free reduction splits at √2 as the test it replaces did, and is exact.
+    #[test]
+    fn ln_reduce_splits_exactly_above_sqrt_2() {
+        let sqrt2 = std::f64::consts::SQRT_2;
+        let at = |x: f64| {
+            let r = ln_reduce(x);
+            (r.k, r.m)
+        };
+        assert_eq!(at(sqrt2), (0.0, sqrt2));
+        assert_eq!(at(sqrt2.next_up()), (1.0, sqrt2.next_up() / 2.0));
+        assert_eq!(at(1.0), (0.0, 1.0));
+        assert_eq!(at(2.0f64.next_down()), (1.0, 2.0f64.next_down() / 2.0));
+        let mut s = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..100_000 {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            // Exponent fields 3..=2044 (2ᵏ stays normal), any mantissa.
+            let x = f64::from_bits(((3 + s % 2042) << 52) | (s >> 12));
+            let (k, m) = at(x);
+            assert!(m > sqrt2 / 2.0 && m <= sqrt2, "{x:e}: m {m}");
+            assert_eq!(m * 2f64.powi(k as i32), x, "{x:e}");
+        }
     }
 
     #[test]
