@@ -34,7 +34,7 @@ impl LossSums {
 }
 
 /// Fixed-point sums for one group of rays.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Tally {
     grid: LatLongGrid,
     /// `[lobe][pixel][channel]`, flattened.

@@ -91,11 +91,12 @@ impl Binner {
     }
 
     /// The flat pixel index (row-major from the top row) of unit direction d.
-    #[inline]
+    #[inline(always)]
     pub fn index(&self, d: DVec3) -> usize {
         self.row(d.x) * self.grid.width + self.column(DVec2::new(d.y, d.z))
     }
 
+    #[inline(always)]
     fn row(&self, x: f64) -> usize {
         let n = self.row_guess.len();
         let i = (((x + 1.0) * 0.5 * n as f64) as usize).min(n - 1);
@@ -109,6 +110,7 @@ impl Binner {
         k
     }
 
+    #[inline(always)]
     fn column(&self, v: DVec2) -> usize {
         if v == DVec2::ZERO {
             return self.grid.pixel_of(0.0, 0.0).0;

@@ -47,6 +47,7 @@ impl Surface {
     /// |i·m| G1(i,m) G1(o,m) / (|i·n_s| |m·n_s|) (Walter 2007 eq. 41 with the separable Smith
     /// G of eq. 23); reflection is chosen with probability F (eq. 22), refraction otherwise.
     /// A direction on the wrong side of the macro surface counts as shadowed.
+    #[inline(always)]
     pub fn scatter(&self, wi: DVec3, ng: DVec3, frame: &ShadingFrame, rng: &mut Sampler) -> Event {
         let cos_i = wi.dot(frame.n);
         if cos_i <= 0.0 {

@@ -57,7 +57,8 @@ impl Fiber {
     /// Traces the path entering at offset h. The path's RGB weight is w · exp(−μ_a L): the
     /// surface sampling weights times Beer–Lambert over the internal length L. Every change of
     /// weight is recorded (exits in `tally`, losses in `lost`), so exits + losses + absorption
-    /// = 1 per path.
+    /// = 1 per path. Inlined, so that it is compiled for the caller's target features.
+    #[inline(always)]
     pub fn trace(&self, h: f64, rng: &mut Sampler, tally: &mut Tally, lost: &mut LossSums) {
         let mut path = Path {
             p: entry_point(h),
@@ -77,6 +78,7 @@ impl Fiber {
     }
 
     /// Follows the path from surface event to surface event until it ends.
+    #[inline(always)]
     fn run(&self, path: &mut Path, rng: &mut Sampler) -> End {
         for _ in 0..MAX_EVENTS {
             let n = macro_normal(path.p);
@@ -106,6 +108,7 @@ impl Fiber {
     }
 
     /// Crosses the fiber along `dir` to the next surface point.
+    #[inline(always)]
     fn travel(&self, path: &mut Path, dir: DVec3) {
         let length = chord(path.p, dir);
         path.p = advance(path.p, dir, length);
