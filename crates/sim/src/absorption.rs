@@ -43,7 +43,7 @@ impl Absorption {
     }
 
     /// exp(−μ_a L) per channel for internal length L ≥ 0.
-    #[inline]
+    #[inline(always)]
     pub fn over(&self, length: f64) -> DVec3 {
         let x = self.mu * length;
         if self.grey {
@@ -53,7 +53,7 @@ impl Absorption {
     }
 
     /// exp(−x) for x ≥ 0 (Tang 1989).
-    #[inline]
+    #[inline(always)]
     pub fn exp_neg(&self, x: f64) -> f64 {
         if x >= X_MAX {
             return 0.0;
