@@ -1,5 +1,6 @@
 //! Small angle helpers shared by the shading code.
 
+use cuticle_fiber::special::sin_cos_quadrant;
 use std::f64::consts::PI;
 
 /// Wraps an angle to (−π, π].
@@ -8,7 +9,9 @@ pub fn wrap_pi(x: f64) -> f64 {
 }
 
 /// A viewing inclination θ_o with its sine and cosine, so that each θ_i sample of the
-/// quadratures needs one `sin_cos` for cos θ_i and cos²θ_d = (1 + cos(θ_o − θ_i))/2.
+/// quadratures needs one sine and cosine for cos θ_i and cos²θ_d = (1 + cos(θ_o − θ_i))/2,
+/// both inclinations in [−π/2, π/2], where `sin_cos_quadrant` needs no range reduction and no
+/// call.
 #[derive(Clone, Copy, Debug)]
 pub struct Outgoing {
     pub theta: f64,
@@ -27,12 +30,12 @@ pub struct Incident {
 
 impl Outgoing {
     pub fn new(theta: f64) -> Self {
-        let (sin, cos) = theta.sin_cos();
+        let (sin, cos) = sin_cos_quadrant(theta);
         Self { theta, sin, cos }
     }
 
     pub fn incident(&self, theta_i: f64) -> Incident {
-        let (sin_i, cos_i) = theta_i.sin_cos();
+        let (sin_i, cos_i) = sin_cos_quadrant(theta_i);
         Incident {
             cos_i,
             theta_d: 0.5 * (self.theta - theta_i),

@@ -10,6 +10,7 @@ use crate::srbf::quadrature::Window;
 use crate::tables::cg_integrals::Tables;
 use crate::tables::lobe_table::{AzimuthalLobes, TrtLobes, TtLobes};
 use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::special::sin_cos_quadrant;
 use glam::DVec3;
 
 /// An SRBF light seen from a fiber: its centre's angles in the fiber frame, its bandwidth, and
@@ -123,7 +124,7 @@ fn tt_convolved(tt: &TtLobes, k1: f64, azimuth: &LightAzimuth) -> DVec3 {
             return 0.0;
         }
         let k2 = sharpness(tt.bandwidth[c]);
-        let (sin_off, cos_off) = tt.offset[c].sin_cos();
+        let (sin_off, cos_off) = sin_cos_quadrant(tt.offset[c]);
         let (a, b) = (azimuth.cos_delta * cos_off, azimuth.sin_delta * sin_off);
         tt.weight[c] * (convolve_sharp(k1, k2, -(a + b)) + convolve_sharp(k1, k2, -(a - b)))
     }))
@@ -133,7 +134,7 @@ fn tt_convolved(tt: &TtLobes, k1: f64, azimuth: &LightAzimuth) -> DVec3 {
 /// the first channel's (the glints and centre below η′ = 2) reuses its convolution.
 fn trt_convolved(trt: &TrtLobes, k1: f64, azimuth: &LightAzimuth) -> DVec3 {
     debug_assert!(trt.centre[1] == -trt.centre[0] && trt.centre[2] == 0.0);
-    let (sin_star, cos_star) = trt.centre[0].sin_cos();
+    let (sin_star, cos_star) = sin_cos_quadrant(trt.centre[0]);
     let (a, b) = (azimuth.cos_delta * cos_star, azimuth.sin_delta * sin_star);
     let cos = [a + b, a - b, azimuth.cos_delta];
     trt.weighted_sum(|s, bandwidth| convolve_sharp(k1, sharpness(bandwidth), cos[s]))
