@@ -51,7 +51,10 @@ mod tonemap;
 
 pub use env_map::{EnvMap, EnvPixel};
 pub use error::LightError;
-pub use fit::{FitOptions, FitProgress, FitReport, fit_srbf, fit_srbf_with_progress};
+pub use fit::{
+    FitCache, FitOptions, FitProgress, FitReport, FitSource, fit_cache_key, fit_srbf,
+    fit_srbf_cached, fit_srbf_with_progress,
+};
 pub use latlong::{direction_from_angles, direction_to_angles};
 pub use load::{load_env_map, load_or_default};
 pub use procedural_sky::ProceduralSky;

@@ -4,7 +4,7 @@
 
 use crate::look::Look;
 use cuticle_groom::Groom;
-use cuticle_light::{EnvMap, FitOptions, FitProgress, SrbfLight, fit_srbf_with_progress};
+use cuticle_light::{EnvMap, FitCache, FitOptions, FitProgress, SrbfLight, fit_srbf_cached};
 use cuticle_render::{Scene, SceneSpec};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
@@ -137,7 +137,8 @@ pub fn fit_lights(
                     report(iteration as f32 / max_iterations.max(1) as f32);
                 }
             };
-            let fit = fit_srbf_with_progress(&map, &options, &mut progress)
+            let cache = FitCache::from_env();
+            let (fit, _) = fit_srbf_cached(&map, &options, cache.as_ref(), &mut progress)
                 .map_err(|e| format!("fit: {e}"))?;
             Ok(Loaded::Lights {
                 env: Box::new(map),

@@ -160,6 +160,7 @@ pub fn run(args: Args) -> Result<()> {
         "lights": scene.lights.len(),
         "shaded_lights": scene.shaded_lights(),
         "srbf_fit_relative_l2": scene.fit_error,
+        "srbf_fit_source": scene.fit_source,
         "visible_points": visible_points,
         "coverage": coverage,
         "device": device_json,

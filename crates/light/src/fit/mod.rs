@@ -17,6 +17,7 @@
 //! 5. The relative L2 error is reported on the fit grid and on the full map.
 
 mod adaptive_target;
+mod cache;
 mod cells;
 mod coefficients;
 mod init;
@@ -32,8 +33,10 @@ mod target;
 use crate::srbf::sharpness_of;
 use crate::{EnvMap, LightError, SrbfLight, relative_l2_error};
 use glam::DVec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
+
+pub use cache::{FitCache, FitSource, fit_srbf_cached, key as fit_cache_key};
 
 /// Settings of [`fit_srbf`]; `Default` is the project's choice.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -77,7 +80,7 @@ impl Default for FitOptions {
 }
 
 /// What a fit made and measured.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct FitReport {
     /// The lights, most powerful first; always `lights` of them, and any the fit found no use
     /// for (a smooth map needs fewer) come last with a zero coefficient.

@@ -15,7 +15,10 @@ use crate::scene::hair::HairParams;
 use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
-use cuticle_light::{EnvMap, FitOptions, MAX_LIGHTS, SrbfLight, fit_srbf, load_or_default};
+use cuticle_light::{
+    EnvMap, FitCache, FitOptions, FitSource, MAX_LIGHTS, SrbfLight, fit_srbf_cached,
+    load_or_default,
+};
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Deserializer, Serialize};
 use std::path::{Path, PathBuf};
@@ -323,6 +326,9 @@ pub struct Scene {
     pub fit_seconds: f64,
     /// Relative L2 error of the fit, when fitted.
     pub fit_error: Option<f64>,
+    /// Whether the lights were fitted now or read from the fit cache
+    /// ([`cuticle_light::FitCache`]); `None` when given (a lights file) or not needed.
+    pub fit_source: Option<FitSource>,
 }
 
 impl Scene {
@@ -357,27 +363,31 @@ impl Scene {
         validate_strands(&spec, &groom)?;
         let env = load_env(&spec.env)?.with_rotation(spec.env_rotate_deg.to_radians());
         let start = Instant::now();
+        let mut fit_source = None;
         let (lights, fit_error) = match lights {
             Some(lights) => (lights, None),
             None => {
-                let report = fit_srbf(
-                    &env,
-                    &FitOptions {
-                        lights: spec.lights,
-                        ..FitOptions::default()
-                    },
-                )?;
+                let options = FitOptions {
+                    lights: spec.lights,
+                    ..FitOptions::default()
+                };
+                let cache = FitCache::from_env();
+                let (report, source) =
+                    fit_srbf_cached(&env, &options, cache.as_ref(), &mut |_| {})?;
+                fit_source = Some(source);
                 (report.lights, Some(report.relative_l2))
             }
         };
-        Ok(Self::assemble(
+        let mut scene = Self::assemble(
             spec,
             groom,
             env,
             lights,
             start.elapsed().as_secs_f64(),
             fit_error,
-        ))
+        );
+        scene.fit_source = fit_source;
+        Ok(scene)
     }
 
     /// A scene from parts already in memory (tests, benchmarks).
@@ -409,6 +419,7 @@ impl Scene {
             camera,
             fit_seconds,
             fit_error,
+            fit_source: None,
         }
     }
 
