@@ -188,35 +188,39 @@ impl OpacityMap {
             axes,
             radius,
             texel,
-            first: vec![f32::INFINITY; n * n],
+            first: Vec::new(),
             sat: Vec::new(),
         };
-        let samples = map.samples(groom);
-        for &(k, z, _) in &samples {
-            map.first[k] = map.first[k].min(z);
-        }
+        // Two passes over the same samples, generated twice rather than stored: the first hair
+        // of each texel, then each sample's optical depth into its layer behind it.
+        let locals: Vec<DVec3> = groom
+            .positions()
+            .iter()
+            .map(|p| map.local(p.as_dvec3()))
+            .collect();
+        let mut first = vec![f32::INFINITY; n * n];
+        map.for_each_sample(groom, &locals, |k, z, _| {
+            first[k] = first[k].min(z);
+        });
         let mut layers = vec![vec![0.0f64; n * n]; NL];
-        for &(k, z, area) in &samples {
-            let rel = (z - map.first[k]) as f64 / radius;
+        map.for_each_sample(groom, &locals, |k, z, area| {
+            let rel = (z - first[k]) as f64 / radius;
             let l = LAYERS[1..].iter().position(|&b| rel < b).unwrap_or(NL - 1);
             layers[l][k] += area;
-        }
+        });
+        map.first = first;
         map.sat = layers.iter().map(|l| summed_area(l, n)).collect();
         map
     }
 
-    /// (texel, depth, optical depth) of points spaced at most a texel along every segment.
-    fn samples(&self, groom: &Groom) -> Vec<(usize, f32, f64)> {
-        let pos = groom.positions();
+    /// Calls `f(texel, depth, optical depth)` for points spaced at most a texel along every
+    /// segment, `locals` being the groom's points in the map's frame ([`Self::local`]).
+    fn for_each_sample(&self, groom: &Groom, locals: &[DVec3], mut f: impl FnMut(usize, f32, f64)) {
         let thick = groom.thickness();
-        let mut out = Vec::with_capacity(groom.point_count() * 2);
         for s in 0..groom.strand_count() {
             let r = groom.strand_range(s);
             for i in r.start..r.end.saturating_sub(1) {
-                let (a, b) = (
-                    self.local(pos[i].as_dvec3()),
-                    self.local(pos[i + 1].as_dvec3()),
-                );
+                let (a, b) = (locals[i], locals[i + 1]);
                 let d = b - a;
                 let across = d.truncate().length();
                 let area =
@@ -225,12 +229,11 @@ impl OpacityMap {
                 for k in 0..steps {
                     let p = a + d * ((k as f64 + 0.5) / steps as f64);
                     if let Some(t) = self.texel_of(p) {
-                        out.push((t, p.z as f32, area / steps as f64));
+                        f(t, p.z as f32, area / steps as f64);
                     }
                 }
             }
         }
-        out
     }
 
     fn local(&self, p: DVec3) -> DVec3 {
@@ -242,9 +245,12 @@ impl OpacityMap {
         )
     }
 
+    /// The texel under `p` (in the map's frame), if inside. Truncation is the floor here, for
+    /// the coordinates it is applied to are checked non-negative first (and it is inlined,
+    /// where the baseline x86-64 build calls libm's `floor`).
     fn texel_of(&self, p: DVec3) -> Option<usize> {
-        let x = ((p.x + self.radius) / self.texel).floor();
-        let y = ((p.y + self.radius) / self.texel).floor();
+        let x = (p.x + self.radius) / self.texel;
+        let y = (p.y + self.radius) / self.texel;
         let n = self.n as f64;
         (x >= 0.0 && y >= 0.0 && x < n && y < n).then(|| y as usize * self.n + x as usize)
     }
@@ -277,9 +283,10 @@ impl OpacityMap {
     /// Mean of layer `l` over the texels within `reach` of p (at least p's own texel).
     fn box_mean(&self, l: usize, p: DVec3, reach: f64) -> f64 {
         let n = self.n as i64;
-        let cx = ((p.x + self.radius) / self.texel).floor() as i64;
-        let cy = ((p.y + self.radius) / self.texel).floor() as i64;
-        let r = (reach / self.texel).floor().max(0.0).min(n as f64) as i64;
+        // p lies in the map (its texel was found) and reach ≥ 0: truncation is the floor.
+        let cx = ((p.x + self.radius) / self.texel) as i64;
+        let cy = ((p.y + self.radius) / self.texel) as i64;
+        let r = (reach / self.texel).max(0.0).min(n as f64) as i64;
         let (x0, x1) = ((cx - r).max(0), (cx + r).min(n - 1));
         let (y0, y1) = ((cy - r).max(0), (cy + r).min(n - 1));
         let sat = &self.sat[l];

@@ -33,7 +33,7 @@ use crate::angles::wrap_pi;
 use crate::frame::shadow::ShadowOptions;
 use crate::srbf::cg_lobes::r_coefficients;
 use crate::srbf::circular_gaussian as cg;
-use crate::srbf::forward_scattering::forward;
+use crate::srbf::forward_scattering::{Forward, forward};
 use crate::srbf::quadrature::Window;
 use crate::srbf::single_scattering::{LocalLight, ShadingFiber};
 use crate::tables::absorption_axis;
@@ -42,11 +42,18 @@ use crate::tables::cg_integrals::Tables;
 use crate::tables::half_circle::HalfCircle;
 use crate::tables::lobe_table::AzimuthalLobes;
 use crate::tables::spread::SpreadNormalisation;
+use cuticle_fiber::special::sin_cos_quadrant;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 
 /// Scattered shares below this skip the global and scattered local terms.
 const NEGLIGIBLE: f64 = 1e-5;
+
+/// What [`forward`] gives a light that crosses no fiber (T̃ = 1).
+const UNSCATTERED: Forward = Forward {
+    scattered: 0.0,
+    variance: 0.0,
+};
 
 /// The 2 of Zinke et al. 2008's f_back = 2Ā_b g(θ_h − Δ̄_b, σ̄_b²)/(π cos²θ_d) and of Xu et
 /// al. 2011 eq. 29: with g a unit Gaussian in θ_h, f_back carries 2Ā_b of the power a fiber
@@ -125,24 +132,33 @@ impl Dual<'_> {
         if energy.max_element() <= 0.0 {
             return DVec3::ZERO;
         }
-        let cos_j = light.theta.cos().max(1e-4);
         let delta = wrap_pi(view.phi_o - light.phi);
-        let fw = view
-            .absorption
-            .map(|x| forward(t, &self.back.at_coordinate(light.theta, x)));
+        // An unshadowed light (T̃ = 1: no optical depth) scatters nothing forward, exactly.
+        let fw = if t < 1.0 {
+            view.absorption
+                .map(|x| forward(t, &self.back.at_coordinate(light.theta, x)))
+        } else {
+            [UNSCATTERED; 3]
+        };
         let scattered = DVec3::from_array(fw.map(|f| f.scattered));
+        let direct = self.shadows.passes(t);
+        let forward_scattered = scattered.max_element() > NEGLIGIBLE;
+        if !direct && !forward_scattered {
+            return DVec3::ZERO;
+        }
         let light_var = srbf_deviation(light.bandwidth).powi(2);
-        let direct_azimuth = self.half.share(light.bandwidth / cos_j, delta) / PI;
         let theta_d = 0.5 * (theta_o - light.theta);
         let back = view.absorption.map(|x| self.back.at_coordinate(theta_d, x));
-        let sigma_light = light_var.sqrt();
-        let mut out = if self.shadows.passes(t) {
+        let mut out = if direct {
+            let cos_j = sin_cos_quadrant(light.theta).1.max(1e-4);
+            let direct_azimuth = self.half.share(light.bandwidth / cos_j, delta) / PI;
+            let sigma_light = light_var.sqrt();
             t * self.d_b * self.local(&back, outgoing, light.theta, sigma_light, direct_azimuth)
                 / self.spread.at(light.theta, sigma_light)
         } else {
             DVec3::ZERO
         };
-        if scattered.max_element() > NEGLIGIBLE {
+        if forward_scattered {
             let weight = scattered.element_sum();
             let spread = (0..3)
                 .map(|c| fw[c].variance * fw[c].scattered)
@@ -184,10 +200,14 @@ impl Dual<'_> {
                         1 => {
                             let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
-                                tt.weight[c]
-                                    * (self.unit_half(tt.bandwidth[c], delta - PI - tt.offset[c])
-                                        + self
-                                            .unit_half(tt.bandwidth[c], delta - PI + tt.offset[c]))
+                                if tt.weight[c] == 0.0 {
+                                    return 0.0;
+                                }
+                                let bandwidth = tt.bandwidth[c];
+                                let share = |offset: f64| self.half.share(bandwidth, offset);
+                                tt.weight[c] * cg::integral(bandwidth) / PI
+                                    * (share(delta - PI - tt.offset[c])
+                                        + share(delta - PI + tt.offset[c]))
                             }))
                         }
                         _ => {

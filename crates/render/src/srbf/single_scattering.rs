@@ -77,7 +77,7 @@ pub fn modes<L: AzimuthalLobes>(
     light: &LocalLight,
     m: usize,
 ) -> [DVec3; 3] {
-    let cos_j = light.theta.cos().max(1e-4);
+    let cos_j = sin_cos_quadrant(light.theta).1.max(1e-4);
     let delta = phi_o - light.phi;
     let (sin_delta, cos_delta) = delta.sin_cos();
     let azimuth = LightAzimuth {
