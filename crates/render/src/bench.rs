@@ -1,10 +1,71 @@
-//! The renderer's benchmark (issue 5): N full frames of a scene and N re-renders after a
-//! hair-parameter edit (absorption changed, tables and shadows kept), reported as medians of
-//! each stage. The command line only builds the scene and prints or records the report.
+//! The renderer's benchmark (issues 5 and 52): N full frames of a scene, and after each the
+//! full-quality re-render that each kind of look-development edit costs ([`Edit`]), reported as
+//! medians of each stage. The command line only builds the scene and prints or records the
+//! report.
 
 use crate::frame::renderer::{Renderer, Timings};
 use crate::scene::Scene;
+use glam::DVec3;
 use serde::Serialize;
+
+/// An edit a look-development session makes, and what its re-render redoes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Edit {
+    /// Every strand's μ_a (a colour or paint edit): shading only; no table is rebuilt.
+    Absorption,
+    /// β_R and α_R: shading, with the back-scattering tables rebuilt.
+    Roughness,
+    /// η: shading, with the lobe table and the back-scattering tables rebuilt.
+    Eta,
+    /// The camera orbits the target: drawing, shadows of the newly visible points, shading.
+    Camera,
+}
+
+impl Edit {
+    pub const ALL: [Edit; 4] = [Edit::Absorption, Edit::Roughness, Edit::Eta, Edit::Camera];
+
+    /// `scene` with this edit applied, different for each `frame` (so no cache serves it).
+    pub fn apply(self, scene: &Scene, frame: usize) -> Scene {
+        let mut edited = scene.clone();
+        let k = frame as f64;
+        let hair = &mut edited.spec.hair;
+        match self {
+            Edit::Absorption => return with_absorption_edit(scene, frame),
+            Edit::Roughness => {
+                hair.beta_r_deg *= 1.1 + 0.05 * k;
+                hair.alpha_r_deg *= 0.9 - 0.05 * k;
+            }
+            Edit::Eta => hair.eta += 0.02 * (1.0 + k),
+            Edit::Camera => edited.camera = orbit(&scene.camera, 10.0 * (1.0 + k)),
+        }
+        edited
+    }
+}
+
+/// A camera turned about its up axis through the target by `degrees`.
+fn orbit(camera: &crate::Camera, degrees: f64) -> crate::Camera {
+    let (target, up) = (
+        DVec3::from(camera.target),
+        DVec3::from(camera.up).normalize(),
+    );
+    let offset = DVec3::from(camera.eye) - target;
+    let turned = glam::DQuat::from_axis_angle(up, degrees.to_radians()) * offset;
+    crate::Camera {
+        eye: (target + turned).to_array(),
+        ..*camera
+    }
+}
+
+/// The median re-render after one kind of edit.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EditTimings {
+    pub edit: Edit,
+    /// Median seconds of each stage the re-render ran (the others 0).
+    pub timings: Timings,
+    /// Median seconds of the re-render: drawing + shadows + shading + resolve.
+    pub frame: f64,
+}
 
 /// Medians over the benchmark's frames.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -17,38 +78,67 @@ pub struct BenchReport {
     pub full: Timings,
     /// Median seconds of a full frame: drawing + shadows + shading + resolve.
     pub full_frame: f64,
-    /// Median seconds of each stage of a re-render after a hair-parameter edit.
-    pub rerender: Timings,
-    /// Median seconds of a re-render: shading + resolve.
-    pub rerender_frame: f64,
+    /// The re-render after each [`Edit`], in [`Edit::ALL`]'s order.
+    pub edits: Vec<EditTimings>,
 }
 
-/// Renders `scene` `frames` times in full, and after each frame re-renders it with its
-/// absorption edited, reusing that frame's visibility and shadows.
+impl BenchReport {
+    /// The re-render after `edit`.
+    pub fn edit(&self, edit: Edit) -> &EditTimings {
+        self.edits
+            .iter()
+            .find(|e| e.edit == edit)
+            .expect("every edit is timed")
+    }
+}
+
+/// Renders `scene` `frames` times in full, and after each frame re-renders it after each
+/// [`Edit`]: hair edits reuse that frame's visibility and shadows, a camera move draws anew.
 pub fn run(renderer: &Renderer, scene: &Scene, frames: usize) -> BenchReport {
     let frames = frames.max(1);
     let mut full = Vec::with_capacity(frames);
-    let mut rerender = Vec::with_capacity(frames);
+    let mut edits = vec![Vec::with_capacity(frames); Edit::ALL.len()];
     let mut visible_points = 0;
     for i in 0..frames {
         let (_, prepared, timings) = renderer.render(scene);
         visible_points = prepared.points.len();
         full.push(timings);
-        let edited = with_absorption_edit(scene, i);
-        let mut t = Timings::default();
-        renderer.rerender(&edited, &prepared, &mut t);
-        rerender.push(t);
+        for (runs, edit) in edits.iter_mut().zip(Edit::ALL) {
+            let edited = edit.apply(scene, i);
+            let mut t = Timings::default();
+            if edit == Edit::Camera {
+                let moved = renderer.prepare(&edited, &mut t);
+                renderer.rerender(&edited, &moved, &mut t);
+            } else {
+                renderer.rerender(&edited, &prepared, &mut t);
+            }
+            runs.push(t);
+        }
     }
     let full = median_timings(&full);
-    let rerender = median_timings(&rerender);
     BenchReport {
         frames,
         visible_points,
-        full_frame: full.drawing + full.shadows + full.shading + full.resolve,
-        rerender_frame: rerender.shading + rerender.resolve,
+        full_frame: frame_seconds(&full),
         full,
-        rerender,
+        edits: Edit::ALL
+            .iter()
+            .zip(&edits)
+            .map(|(&edit, runs)| {
+                let timings = median_timings(runs);
+                EditTimings {
+                    edit,
+                    frame: frame_seconds(&timings),
+                    timings,
+                }
+            })
+            .collect(),
     }
+}
+
+/// drawing + shadows + shading + resolve.
+fn frame_seconds(t: &Timings) -> f64 {
+    t.drawing + t.shadows + t.shading + t.resolve
 }
 
 /// The scene with every strand's absorption set to a value that differs from frame to frame.

@@ -11,7 +11,7 @@ use anyhow::{Context, Result};
 use cuticle_fiber::ranges::CountRange;
 use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
-use cuticle_render::bench::BenchReport;
+use cuticle_render::bench::{BenchReport, Edit};
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -303,6 +303,17 @@ fn check_finite(image: &Image) -> Result<()> {
 
 /// bench.json: the scene's parameters and the median seconds.
 fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Result<Value> {
+    let edits: serde_json::Map<String, Value> = report
+        .edits
+        .iter()
+        .map(|e| {
+            let name = serde_json::to_value(e.edit).map(|v| v.as_str().unwrap_or("").to_owned());
+            Ok((
+                name?,
+                json!({ "stages": seconds_json(&e.timings), "frame": e.frame }),
+            ))
+        })
+        .collect::<Result<_>>()?;
     Ok(json!({
         "params": serde_json::to_value(&scene.spec)?,
         "strands": scene.groom.strand_count(),
@@ -316,11 +327,8 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
             "tables": renderer.table_seconds,
             "srbf_fit": scene.fit_seconds,
             "full_frame": seconds_json(&report.full),
-            "rerender": {
-                "shading": report.rerender.shading,
-                "resolve": report.rerender.resolve,
-                "frame": report.rerender_frame,
-            },
+            "frame": report.full_frame,
+            "edits": edits,
         },
     }))
 }
@@ -328,7 +336,7 @@ fn bench_json(scene: &Scene, renderer: &Renderer, report: &BenchReport) -> Resul
 fn print_bench(r: &BenchReport) {
     let f = &r.full;
     println!(
-        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); {}; tables {:.2} s once",
+        "median of {} frames, {} visible points: full frame {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3}); tables {:.2} s once",
         r.frames,
         r.visible_points,
         r.full_frame,
@@ -336,9 +344,35 @@ fn print_bench(r: &BenchReport) {
         f.shadows,
         f.shading,
         f.resolve,
-        rerender_summary(r.rerender_frame, &r.rerender),
         f.tables
     );
+    let absorption = r.edit(Edit::Absorption);
+    println!(
+        "{}",
+        rerender_summary(absorption.frame, &absorption.timings)
+    );
+    for e in r.edits.iter().filter(|e| e.edit != Edit::Absorption) {
+        let t = &e.timings;
+        println!(
+            "re-render after {} {:.3} s (drawing {:.3}, shadows {:.3}, shading {:.3}, resolve {:.3})",
+            edit_name(e.edit),
+            e.frame,
+            t.drawing,
+            t.shadows,
+            t.shading,
+            t.resolve
+        );
+    }
+}
+
+/// How the benchmark's printout names an edit.
+fn edit_name(edit: Edit) -> &'static str {
+    match edit {
+        Edit::Absorption => "an absorption edit",
+        Edit::Roughness => "a beta_R/alpha_R edit",
+        Edit::Eta => "an eta edit",
+        Edit::Camera => "a camera orbit",
+    }
 }
 
 /// The re-render after an absorption edit, as both devices' benchmarks print it.
