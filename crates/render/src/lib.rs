@@ -39,6 +39,7 @@ pub mod tables;
 
 pub use frame::progress::Progress;
 pub use frame::renderer::{Image, Prepared, Renderer, TableBuilds, Timings, WorldLight};
+pub use frame::reshade::Shaded;
 pub use frame::shadow::ShadowOptions;
 pub use scene::camera::Camera;
 pub use scene::hair::HairParams;

@@ -63,6 +63,8 @@ pub struct Frame {
     /// Whole-groom shadow computations its back end has made so far (the CPU back end; see
     /// [`Shading::shadow_passes`]).
     pub shadow_passes: u64,
+    /// Points this frame's shading computed ([`Shading::points_shaded`]).
+    pub points_shaded: Option<usize>,
 }
 
 /// What the worker reports.
@@ -358,6 +360,7 @@ fn render(
         backend: slot.shading.backend(),
         strands_updated: slot.shading.strands_updated(),
         shadow_passes: slot.shading.shadow_passes(),
+        points_shaded: slot.shading.points_shaded(),
     }))
 }
 

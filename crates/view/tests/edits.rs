@@ -1,6 +1,7 @@
 //! What each kind of edit makes the render worker redo, counted (never timed): a hair-parameter
 //! edit or a paint stroke re-runs shading and resolve only — no preparation (drawing, shadows)
-//! and no table but the ones its parameter feeds —, a camera move re-runs drawing but not the
+//! and no table but the ones its parameter feeds, and a paint stroke only the painted strands'
+//! points —, a camera move re-runs drawing but not the
 //! shadows, and the preview really is smaller, with fewer lights and quadrature segments. A small scene (300 strands, 160 × 120, 12 SRBF lights,
 //! more than a preview keeps) on the CPU renderer.
 
@@ -99,6 +100,14 @@ fn prepared(frames: &[Frame]) -> bool {
     frames.last().expect("a full frame").prepared
 }
 
+/// Points the full-quality frame shaded (the CPU back end counts them).
+fn points_shaded(frames: &[Frame]) -> usize {
+    frames
+        .last()
+        .and_then(|f| f.points_shaded)
+        .expect("the CPU back end counts the points it shades")
+}
+
 /// Whole-groom shadow passes of both back ends so far.
 fn shadow_passes(frames: &[Frame]) -> u64 {
     frames.iter().map(|f| f.shadow_passes).sum()
@@ -138,6 +147,16 @@ fn each_edit_redoes_only_what_it_changes() {
     let (painted, built) = bench.frames(&look);
     assert_eq!((prepared(&painted), built), (false, NONE), "a paint stroke");
     assert_ne!(full(&painted), full(&absorbed), "the paint shows");
+    assert!(
+        points_shaded(&painted) < points_shaded(&absorbed),
+        "a paint stroke re-shades its strands' points alone at full quality: {} of {}",
+        points_shaded(&painted),
+        points_shaded(&absorbed)
+    );
+    assert!(
+        points_shaded(&painted) > 0,
+        "the painted strands are visible"
+    );
 
     look.spec.hair.beta_r_deg += 2.0;
     let (widened, built) = bench.frames(&look);

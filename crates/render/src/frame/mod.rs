@@ -6,6 +6,7 @@
 //!    light's bandwidth ([`shadow`]);
 //! 4. shading: L_o at every visible point in its fiber frame ([`fiber_frames`]), by the SRBF
 //!    path ([`crate::srbf`]) or the brute force ([`crate::brute`]), with [`progress`];
+//!    A pass after an edit shades only the points whose inputs changed ([`reshade`]).
 //! 5. resolve: subsamples averaged into pixels; the [`Image`](renderer::Image) as files
 //!    ([`image_file`]).
 
@@ -14,5 +15,6 @@ pub mod image_file;
 pub mod progress;
 pub mod raster;
 pub mod renderer;
+pub mod reshade;
 pub mod shadow;
 pub mod sub_lights;

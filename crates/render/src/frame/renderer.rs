@@ -11,6 +11,7 @@ use crate::brute::single_scattering::{self as brute, Directional};
 use crate::frame::fiber_frames::{frame_at, strand_of_points};
 use crate::frame::progress::{Counter, Progress};
 use crate::frame::raster::{Coverage, EMPTY, rasterize};
+use crate::frame::reshade::{Shaded, SharedInputs, stale_points};
 use crate::frame::shadow::{ShadowOptions, transmittance};
 use crate::frame::sub_lights::split_wide;
 use crate::preview::PREVIEW_TABLE_NODES;
@@ -284,10 +285,34 @@ impl Renderer {
         progress: Progress,
         cancel: &AtomicBool,
     ) -> Option<Vec<DVec3>> {
-        let counter = Counter::new(prepared.points.len(), progress);
+        self.shade_reusing(scene, prepared, None, progress, cancel)
+            .map(|shaded| shaded.colours)
+    }
+
+    /// [`Self::shade_cancellable`] that shades only the points whose inputs changed since
+    /// `previous`, a pass on the same `prepared` ([`crate::frame::reshade`]): after a paint
+    /// stroke, the painted strands' points. `progress` counts the points shaded.
+    pub fn shade_reusing(
+        &self,
+        scene: &Scene,
+        prepared: &Prepared,
+        previous: Option<&Shaded>,
+        progress: Progress,
+        cancel: &AtomicBool,
+    ) -> Option<Shaded> {
         let fibers: Vec<MarschnerParams> = (0..scene.groom.strand_count())
             .map(|s| scene.spec.hair.fiber(scene.groom.appearance().get(s)))
             .collect();
+        let shared = SharedInputs::of(scene);
+        let stale = stale_points(
+            previous,
+            &shared,
+            &fibers,
+            &prepared.points,
+            &prepared.strand_of_point,
+        );
+        let points_shaded = stale.iter().filter(|&&s| s).count();
+        let counter = Counter::new(points_shaded, progress);
         let hair = &scene.spec.hair;
         let multiple = scene.spec.multiple;
         let back = multiple.then(|| self.back_scattering(&hair.fiber(None)));
@@ -344,6 +369,9 @@ impl Renderer {
             .map_init(
                 || (Vec::new(), Vec::new()),
                 |scratch, (k, &p)| {
+                    if !stale[k] {
+                        return previous.map_or(DVec3::ZERO, |b| b.colours[k]);
+                    }
                     if cancel.load(Ordering::Relaxed) {
                         return DVec3::ZERO;
                     }
@@ -363,7 +391,12 @@ impl Renderer {
                 },
             )
             .collect::<Vec<_>>();
-        (!cancel.load(Ordering::Relaxed)).then_some(colours)
+        (!cancel.load(Ordering::Relaxed)).then_some(Shaded {
+            colours,
+            points_shaded,
+            fibers,
+            shared,
+        })
     }
 
     /// Stage 5: averages each pixel's subsamples, hair shaded by interpolating its segment's

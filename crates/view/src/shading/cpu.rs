@@ -6,7 +6,9 @@
 use crate::shading::{NO_STRAND, Shading, StrandBuffer};
 use cuticle_groom::GroomParts;
 use cuticle_render::frame::raster::EMPTY;
-use cuticle_render::{Image, Prepared, Renderer, Scene, ShadowOptions, Timings, WorldLight};
+use cuticle_render::{
+    Image, Prepared, Renderer, Scene, Shaded, ShadowOptions, Timings, WorldLight,
+};
 use std::sync::atomic::AtomicBool;
 
 /// Most T̃ values (points × lights) kept: 128 MiB of f32.
@@ -30,6 +32,8 @@ struct KeptShadows {
 pub struct CpuShading {
     renderer: Renderer,
     prepared: Option<Prepared>,
+    /// The last shading pass on `prepared`: the next shades only the points it changes.
+    shaded: Option<Shaded>,
     shadows: Option<KeptShadows>,
     /// Times T̃ was computed: for every point (a new groom, lights or shadow settings), or at
     /// the visible points of a groom too large to keep them for.
@@ -42,6 +46,7 @@ impl CpuShading {
         Self {
             renderer,
             prepared: None,
+            shaded: None,
             shadows: None,
             shadow_passes: 0,
         }
@@ -90,6 +95,7 @@ impl Shading for CpuShading {
 
     fn prepare(&mut self, scene: &Scene) -> Result<(), String> {
         self.prepared = None;
+        self.shaded = None;
         let mut timings = Timings::default();
         let mut prepared = self.renderer.draw(scene, &mut timings);
         prepared.shadow = self.shadows_at(scene, &prepared);
@@ -110,13 +116,24 @@ impl Shading for CpuShading {
         let Some(prepared) = self.prepared.as_ref() else {
             return Ok(None);
         };
-        let colours = self
-            .renderer
-            .shade_cancellable(scene, prepared, &|_, _| {}, cancel);
-        Ok(colours.map(|c| {
+        let previous = self.shaded.take();
+        let Some(shaded) =
             self.renderer
-                .resolve(prepared, &c, scene.groom.point_count())
-        }))
+                .shade_reusing(scene, prepared, previous.as_ref(), &|_, _| {}, cancel)
+        else {
+            // Cancelled: the pass before still describes nothing newer; keep it.
+            self.shaded = previous;
+            return Ok(None);
+        };
+        let image = self
+            .renderer
+            .resolve(prepared, &shaded.colours, scene.groom.point_count());
+        self.shaded = Some(shaded);
+        Ok(Some(image))
+    }
+
+    fn points_shaded(&self) -> Option<usize> {
+        self.shaded.as_ref().map(|s| s.points_shaded)
     }
 
     fn strands(&self) -> StrandBuffer {

@@ -8,7 +8,8 @@
 //!   (the GPU back end keeps its drawing);
 //! - [`Shading::shade`]: L_o at the visible points for the scene's hair parameters and
 //!   per-strand absorption, resolved into pixels, on the kept preparation (an edit of the hair
-//!   or a paint stroke re-runs only this), given up when a newer edit makes it stale;
+//!   or a paint stroke re-runs only this; the CPU back end then shades only the points whose
+//!   strand or shared parameters changed), given up when a newer edit makes it stale;
 //! - [`Shading::strands`]: which strand each subsample of the prepared frame shows, for picking
 //!   strands under the brush.
 
@@ -74,6 +75,12 @@ pub trait Shading: Send {
     /// renderer has built so far; 0 for one that does not count.
     fn table_builds(&self) -> u64 {
         0
+    }
+    /// The points the last shade computed (a back end that keeps the pass before shades only
+    /// the points an edit changed: after a paint stroke, the painted strands'); `None` for one
+    /// that does not count.
+    fn points_shaded(&self) -> Option<usize> {
+        None
     }
 }
 
