@@ -15,7 +15,7 @@ use crate::angles::{deflection, deflection_slope, eta_prime, sigma_prime, smooth
 use crate::fresnel::oblique;
 use crate::srbf::circular_gaussian as cg;
 use crate::srbf::taylor;
-use crate::tables::cg_integrals::Tables;
+use crate::tables::cg_integrals::{FresnelRow, Tables};
 use cuticle_fiber::azimuthal::wrapped_gaussian;
 use cuticle_fiber::bravais;
 use cuticle_fiber::fresnel::fresnel_oblique;
@@ -58,7 +58,12 @@ const MIN_BANDWIDTH: f64 = 1e-3;
 /// C_0 … C_6 of N_R's polynomial in |cos(φ/2)| (eq. 13): N_R = ¼ |cos(φ/2)| F with F the
 /// quintic Σ a_n |cos(φ/2)|ⁿ of [`Tables::r_fresnel`], so C_0 = 0 and C_{n+1} = ¼ a_n.
 pub fn r_coefficients(tables: &Tables, eta: f64, theta_d: f64) -> [f64; 7] {
-    let a = tables.r_fresnel(eta, theta_d);
+    r_coefficients_in(tables, tables.fresnel_row(eta), theta_d)
+}
+
+/// [`r_coefficients`] at η's row of the Fresnel table.
+pub fn r_coefficients_in(tables: &Tables, row: FresnelRow, theta_d: f64) -> [f64; 7] {
+    let a = tables.r_fresnel_in(row, theta_d);
     let mut out = [0.0; 7];
     for (n, an) in a.iter().enumerate() {
         out[n + 1] = 0.25 * an;
@@ -74,8 +79,14 @@ pub fn r_eval(tables: &Tables, eta: f64, theta_d: f64, phi: f64) -> f64 {
 }
 
 /// 𝒩_R = Σ_k C_k 𝒞_k(λ′, δ) (eq. 14).
-pub fn r_convolved(tables: &Tables, eta: f64, theta_d: f64, lambda_light: f64, delta: f64) -> f64 {
-    let c = r_coefficients(tables, eta, theta_d);
+pub fn r_convolved(
+    tables: &Tables,
+    row: FresnelRow,
+    theta_d: f64,
+    lambda_light: f64,
+    delta: f64,
+) -> f64 {
+    let c = r_coefficients_in(tables, row, theta_d);
     let t = tables.cosine_normalised(lambda_light, delta);
     let sum: f64 = (1..7).map(|k| c[k] * t[k]).sum();
     sum * t[7].exp()

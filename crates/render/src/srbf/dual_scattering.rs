@@ -31,14 +31,14 @@
 use crate::angles::Outgoing;
 use crate::angles::wrap_pi;
 use crate::frame::shadow::ShadowOptions;
-use crate::srbf::cg_lobes::r_coefficients;
+use crate::srbf::cg_lobes::r_coefficients_in;
 use crate::srbf::circular_gaussian as cg;
 use crate::srbf::forward_scattering::{Forward, forward};
 use crate::srbf::quadrature::Window;
 use crate::srbf::single_scattering::{LocalLight, ShadingFiber};
 use crate::tables::absorption_axis;
 use crate::tables::back_scattering::{Averages, BackScatteringTables};
-use crate::tables::cg_integrals::Tables;
+use crate::tables::cg_integrals::{FresnelRow, Tables};
 use crate::tables::half_circle::HalfCircle;
 use crate::tables::lobe_table::AzimuthalLobes;
 use crate::tables::spread::SpreadNormalisation;
@@ -186,6 +186,7 @@ impl Dual<'_> {
     ) -> DVec3 {
         let w = self.half.cosines(delta);
         let eta = fiber.params.eta;
+        let fresnel = self.tables.fresnel_row(eta);
         let lobes = fiber.params.longitudinal();
         let outgoing = Outgoing::new(theta_o);
         (0..3)
@@ -196,7 +197,7 @@ impl Dual<'_> {
                 window.integrate_incident(self.m, &outgoing, |sample| {
                     let theta_d = sample.theta_d;
                     match t {
-                        0 => DVec3::splat(r_half(self.tables, eta, theta_d, &w)),
+                        0 => DVec3::splat(r_half(self.tables, fresnel, theta_d, &w)),
                         1 => {
                             let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
@@ -204,10 +205,11 @@ impl Dual<'_> {
                                     return 0.0;
                                 }
                                 let bandwidth = tt.bandwidth[c];
-                                let share = |offset: f64| self.half.share(bandwidth, offset);
-                                tt.weight[c] * cg::integral(bandwidth) / PI
-                                    * (share(delta - PI - tt.offset[c])
-                                        + share(delta - PI + tt.offset[c]))
+                                let [near, far] = self.half.shares(
+                                    bandwidth,
+                                    [delta - PI - tt.offset[c], delta - PI + tt.offset[c]],
+                                );
+                                tt.weight[c] * cg::integral(bandwidth) / PI * (near + far)
                             }))
                         }
                         _ => {
@@ -258,8 +260,8 @@ impl Dual<'_> {
 }
 
 /// 𝒩^G_R = (1/π) Σ_k C_k W_k(δ) (eqs. 13, 28).
-fn r_half(tables: &Tables, eta: f64, theta_d: f64, w: &[f64; 7]) -> f64 {
-    let c = r_coefficients(tables, eta, theta_d);
+fn r_half(tables: &Tables, fresnel: FresnelRow, theta_d: f64, w: &[f64; 7]) -> f64 {
+    let c = r_coefficients_in(tables, fresnel, theta_d);
     (1..7).map(|k| c[k] * w[k]).sum::<f64>() / PI
 }
 

@@ -87,6 +87,7 @@ pub fn modes<L: AzimuthalLobes>(
     };
     let lobes = fiber.params.longitudinal();
     let outgoing = Outgoing::new(theta_o);
+    let fresnel = tables.fresnel_row(fiber.params.eta);
     std::array::from_fn(|t| {
         let (alpha, beta) = lobes[t];
         let window = Window::product(
@@ -99,13 +100,7 @@ pub fn modes<L: AzimuthalLobes>(
             let Incident { cos_i, theta_d, .. } = *s;
             let lambda = light.bandwidth / (cos_i * cos_j).sqrt();
             match t {
-                0 => DVec3::splat(r_convolved(
-                    tables,
-                    fiber.params.eta,
-                    theta_d,
-                    lambda,
-                    delta,
-                )),
+                0 => DVec3::splat(r_convolved(tables, fresnel, theta_d, lambda, delta)),
                 1 => tt_convolved(&fiber.lobes.tt(theta_d), sharpness(lambda), &azimuth),
                 _ => {
                     let eta = mean_eta_star(tables, fiber.params, lambda, azimuth.phi_sum);

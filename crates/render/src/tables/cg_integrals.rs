@@ -10,7 +10,7 @@
 
 use crate::fresnel::oblique;
 use crate::srbf::circular_gaussian as cg;
-use crate::tables::grid::Grid2;
+use crate::tables::grid::{Cell, Grid2};
 use crate::tables::r_fresnel::{self, TERMS};
 use cuticle_fiber::special::GaussLegendre;
 use std::f64::consts::PI;
@@ -88,8 +88,22 @@ impl Tables {
 
     /// [a₀ … a₅] of N_R's Fresnel factor F ≈ Σ a_n cosⁿγ at (η, θ_d) ([`r_fresnel`]).
     pub fn r_fresnel(&self, eta: f64, theta_d: f64) -> [f64; TERMS] {
+        self.r_fresnel_in(self.fresnel_row(eta), theta_d)
+    }
+
+    /// Where η lies in the Fresnel table, for [`Self::r_fresnel_in`]: found once for the
+    /// quadrature samples of a window, which share η.
+    pub fn fresnel_row(&self, eta: f64) -> FresnelRow {
+        FresnelRow(
+            self.r_fresnel
+                .cell_x(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln()),
+        )
+    }
+
+    /// [`Self::r_fresnel`] at η's row: the same values.
+    pub fn r_fresnel_in(&self, row: FresnelRow, theta_d: f64) -> [f64; TERMS] {
         self.r_fresnel
-            .lookup(eta.clamp(ETA_RANGE.0, ETA_RANGE.1).ln(), theta_d.abs())
+            .lookup_cells(row.0, self.r_fresnel.cell_y(theta_d.abs()))
     }
 
     /// The grids as stored, for a back end that uploads them.
@@ -107,6 +121,10 @@ impl Tables {
         self.cosine.len() + self.h_tt.len() + self.h_trt.len() + self.r_fresnel.len()
     }
 }
+
+/// An index of refraction's place in the Fresnel table ([`Tables::fresnel_row`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FresnelRow(Cell);
 
 /// [`Tables`]' grids as stored.
 pub struct StoredGrids<'a> {

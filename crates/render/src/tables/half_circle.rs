@@ -72,8 +72,16 @@ impl HalfCircle {
 
     /// P(λ, δ): the share of g^c(·; μ, λ) inside the half circle centred μ + δ.
     pub fn share(&self, lambda: f64, delta: f64) -> f64 {
-        let l = lambda.clamp(LAMBDA_MIN, LAMBDA_MAX).ln();
-        self.share.lookup(l, crate::angles::wrap_pi(delta).abs())[0]
+        self.shares(lambda, [delta])[0]
+    }
+
+    /// [`Self::share`] of one λ at several δ, its logarithm and cell found once.
+    pub fn shares<const N: usize>(&self, lambda: f64, deltas: [f64; N]) -> [f64; N] {
+        let cell = self.share.cell_x(lambda.clamp(LAMBDA_MIN, LAMBDA_MAX).ln());
+        deltas.map(|delta| {
+            let d = self.share.cell_y(crate::angles::wrap_pi(delta).abs());
+            self.share.lookup_cells(cell, d)[0]
+        })
     }
 }
 
