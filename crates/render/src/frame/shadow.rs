@@ -99,8 +99,9 @@ struct OpacityMap {
     texel: f64,
     /// Depth (along the light's travel) of the first hair per texel.
     first: Vec<f32>,
-    /// Summed-area tables of each layer's optical depth.
-    sat: Vec<Vec<f64>>,
+    /// Summed-area tables of each layer's optical depth, the layers of a texel side by side
+    /// (one cache line holds what a corner of a box reads for every layer).
+    sat: Vec<[f64; NL]>,
 }
 
 /// T̃ of each light at each of `points`: `out[p * lights + j]`. `bandwidths` are the lights' λ_j
@@ -202,14 +203,14 @@ impl OpacityMap {
         map.for_each_sample(groom, &locals, |k, z, _| {
             first[k] = first[k].min(z);
         });
-        let mut layers = vec![vec![0.0f64; n * n]; NL];
+        let mut layers = vec![[0.0f64; NL]; n * n];
         map.for_each_sample(groom, &locals, |k, z, area| {
             let rel = (z - first[k]) as f64 / radius;
             let l = LAYERS[1..].iter().position(|&b| rel < b).unwrap_or(NL - 1);
-            layers[l][k] += area;
+            layers[k][l] += area;
         });
         map.first = first;
-        map.sat = layers.iter().map(|l| summed_area(l, n)).collect();
+        map.sat = summed_area(layers, n);
         map
     }
 
@@ -289,12 +290,11 @@ impl OpacityMap {
         let r = (reach / self.texel).max(0.0).min(n as f64) as i64;
         let (x0, x1) = ((cx - r).max(0), (cx + r).min(n - 1));
         let (y0, y1) = ((cy - r).max(0), (cy + r).min(n - 1));
-        let sat = &self.sat[l];
         let at = |x: i64, y: i64| -> f64 {
             if x < 0 || y < 0 {
                 0.0
             } else {
-                sat[(y * n + x) as usize]
+                self.sat[(y * n + x) as usize][l]
             }
         };
         let sum = at(x1, y1) - at(x0 - 1, y1) - at(x1, y0 - 1) + at(x0 - 1, y0 - 1);
@@ -302,17 +302,22 @@ impl OpacityMap {
     }
 }
 
-/// Inclusive 2D prefix sums of an n × n grid.
-fn summed_area(grid: &[f64], n: usize) -> Vec<f64> {
-    let mut s = grid.to_vec();
+/// Inclusive 2D prefix sums of an n × n grid, each layer on its own.
+fn summed_area(mut s: Vec<[f64; NL]>, n: usize) -> Vec<[f64; NL]> {
     for y in 0..n {
         for x in 1..n {
-            s[y * n + x] += s[y * n + x - 1];
+            let left = s[y * n + x - 1];
+            for (v, l) in s[y * n + x].iter_mut().zip(left) {
+                *v += l;
+            }
         }
     }
     for y in 1..n {
         for x in 0..n {
-            s[y * n + x] += s[(y - 1) * n + x];
+            let below = s[(y - 1) * n + x];
+            for (v, b) in s[y * n + x].iter_mut().zip(below) {
+                *v += b;
+            }
         }
     }
     s
