@@ -59,7 +59,13 @@ impl Window {
         Edge {
             x,
             u,
-            erfc_abs: erfc_from_gauss(u.abs(), gauss),
+            // erfc_from_gauss is a factor times `gauss`: zero where that is, without its
+            // division (the same test as gauss's, so a NaN still propagates).
+            erfc_abs: if u * u >= 729.0 {
+                0.0
+            } else {
+                erfc_from_gauss(u.abs(), gauss)
+            },
             gauss,
         }
     }
