@@ -11,8 +11,9 @@ use cuticle_render::{
 };
 use std::sync::atomic::AtomicBool;
 
-/// Most T̃ values (points × lights) kept: 128 MiB of f32.
-pub const KEPT_SHADOW_VALUES: usize = 1 << 25;
+/// Most T̃ values (points × lights) kept: 256 MiB of f32, enough for the default scene
+/// (318,287 points × 174 shaded lights), whose camera orbits then re-run drawing alone.
+pub const KEPT_SHADOW_VALUES: usize = 1 << 26;
 
 /// What the kept transmittances were computed for.
 #[derive(Clone, Debug, PartialEq)]
