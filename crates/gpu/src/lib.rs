@@ -7,7 +7,7 @@
 //!    the lobe table and back-scattering tables uploaded when a hair parameter rebuilds them
 //!    ([`tables`]);
 //! 2. drawing: strands rasterised into the supersampled visibility buffer and the visible
-//!    points listed, on the GPU ([`draw`], frame/raster.rs's rules); the background (the
+//!    points listed, on the GPU ([`draw`], frame/draw.rs's rules); the background (the
 //!    environment through each pixel) on the CPU meanwhile;
 //! 3. shadows: deep opacity maps of every lit light, filtered to its bandwidth, and T̃ at every
 //!    visible point, on the GPU ([`shadows`]), into the buffer shading reads;

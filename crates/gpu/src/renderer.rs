@@ -11,7 +11,7 @@ use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
 use crate::shadows::{ShadowInputs, ShadowMaps, ShadowPipelines};
 use crate::strands::{self, StrandError, StrandParams, StrandSource};
 use crate::tables::{self, GridDesc, slot};
-use cuticle_render::frame::raster::{Coverage, EMPTY};
+use cuticle_render::frame::draw::{Coverage, EMPTY};
 use cuticle_render::frame::renderer::{background as frame_background, srbf_lights};
 use cuticle_render::scene::hair::caustic_bandwidth;
 use cuticle_render::tables::absorption_axis::MU_A_SCALE;

@@ -1,4 +1,4 @@
-//! The GPU's drawing (crates/gpu/src/draw) against frame/raster.rs's (the reference): the
+//! The GPU's drawing (crates/gpu/src/draw) against frame/draw.rs's (the reference): the
 //! strand each subsample shows, t along its segment, and the visible points, on the parity
 //! scene, an odd size with 3 × 3 subsamples, and a close-up whose strands are several
 //! subsamples wide and whose nearest points lie behind the near plane.
@@ -26,8 +26,8 @@ mod common;
 
 use common::{gpu, load, spec};
 use cuticle_render::Scene;
+use cuticle_render::frame::draw::{Coverage, EMPTY, draw_strands};
 use cuticle_render::frame::fiber_frames::strand_of_points;
-use cuticle_render::frame::raster::{Coverage, EMPTY, rasterize};
 use glam::DVec3;
 
 /// How two drawings of one groom differ.
@@ -70,7 +70,7 @@ fn difference(a: &Coverage, b: &Coverage, strand: &[u32]) -> Difference {
 fn compare(scene: &Scene, label: &str) -> Coverage {
     let spec = &scene.spec;
     let view = scene.camera.view(spec.width, spec.height);
-    let want = rasterize(
+    let want = draw_strands(
         &scene.groom,
         &view,
         spec.width,

@@ -75,7 +75,7 @@ fn hair_pixels_of(prepared: &cuticle_render::Prepared) -> Vec<bool> {
     (0..cov.width * cov.height)
         .map(|k| {
             cov.pixel_samples(k % cov.width, k / cov.width)
-                .any(|s| cov.segment[s] != cuticle_render::frame::raster::EMPTY)
+                .any(|s| cov.segment[s] != cuticle_render::frame::draw::EMPTY)
         })
         .collect()
 }

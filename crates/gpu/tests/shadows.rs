@@ -1,4 +1,4 @@
-//! The GPU's deep opacity maps (crates/gpu/src/shadows) against frame/shadow.rs's (the
+//! The GPU's deep opacity maps (crates/gpu/src/shadows) against frame/shadows.rs's (the
 //! reference, in f64): T̃ of every light at every visible point of the same drawing.
 //!
 //! Bounds: mean |ΔT̃| below 2e-5 and fewer than 0.1 % of the (point, light) pairs off by more
@@ -17,7 +17,7 @@ mod common;
 use common::{cpu, device, gpu, load, spec};
 use cuticle_gpu::GpuRenderer;
 use cuticle_render::frame::renderer::shadows_of_lit;
-use cuticle_render::frame::shadow::transmittance;
+use cuticle_render::frame::shadows::transmittance;
 use cuticle_render::{Prepared, Scene, Timings};
 
 /// (mean |a − b|, share of entries off by more than 0.05).

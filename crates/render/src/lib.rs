@@ -15,7 +15,7 @@
 //! - [`scene`]: what a render is of — groom, environment and its SRBF fit, camera
 //!   ([`scene::camera`]), hair parameters ([`scene::hair`]) — from a TOML file and/or flags.
 //! - [`frame`]: the frame's stages and their timings ([`frame::renderer`]): drawing
-//!   ([`frame::raster`]), shadows ([`frame::shadow`]), the fiber frame at each point, shading,
+//!   ([`frame::draw`]), shadows ([`frame::shadows`]), the fiber frame at each point, shading,
 //!   resolve.
 //! - [`tables`]: the precomputed functions shading reads, built once or when a hair parameter
 //!   changes.
@@ -40,7 +40,7 @@ pub mod tables;
 pub use frame::progress::Progress;
 pub use frame::renderer::{Image, Prepared, Renderer, TableBuilds, Timings, WorldLight};
 pub use frame::reshade::Shaded;
-pub use frame::shadow::ShadowOptions;
+pub use frame::shadows::ShadowOptions;
 pub use scene::camera::Camera;
 pub use scene::hair::HairParams;
 pub use scene::{Lobes, Method, Scene, SceneError, SceneSpec};

@@ -1,4 +1,4 @@
-//! The deep opacity maps' transmittance (frame/shadow.rs, a sharp light: λ = 0) against the
+//! The deep opacity maps' transmittance (frame/shadows.rs, a sharp light: λ = 0) against the
 //! exact one, where the hair thins: a tuft of hanging strands of varied length, so that the
 //! bottom fifth holds few, tapering fibers. The exact transmittance of a point toward a light is
 //! visibility by ray casting against every segment as a capsule of the fiber's radius, leaving
@@ -8,7 +8,7 @@
 
 use cuticle_groom::{Groom, GroomParts};
 use cuticle_render::ShadowOptions;
-use cuticle_render::frame::shadow::transmittance;
+use cuticle_render::frame::shadows::transmittance;
 use glam::{DVec3, Vec3};
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;

@@ -7,7 +7,7 @@
 //! meets discs of diameter D. Lengths are in units of 1/(ρD), so σ_t = cos θ and a ray from
 //! depth d below the top toward the light crosses on average n = cos θ_L d / ω_L·z fibers —
 //! the optical depth the renderer's opacity maps count (projected fiber area per unit area,
-//! [`cuticle_render::frame::shadow`]), with T̃ = e^{−n}.
+//! [`cuticle_render::frame::shadows`]), with T̃ = e^{−n}.
 //!
 //! Statistical rather than explicit cylinders: the far-field fiber model already averages
 //! over the offset h at which a ray meets a fiber, so a medium of Poisson crossings is exactly
@@ -572,7 +572,7 @@ fn opacity_map_counts_the_crossings_of_a_slab() {
         })
         .collect();
     let options = ShadowOptions::default();
-    let t = cuticle_render::frame::shadow::transmittance(
+    let t = cuticle_render::frame::shadows::transmittance(
         &groom,
         &points,
         &[DVec3::Z],

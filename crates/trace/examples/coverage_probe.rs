@@ -6,7 +6,7 @@
 //! `cargo run --release --example coverage_probe [GROOM]`; `coverage_probe mask FILE.exr
 //! [GROOM]` writes min(raster, true) per pixel, a `--coverage` mask for `cuticle compare`
 //! against path renders made before they wrote coverage.exr.
-use cuticle_render::frame::raster::rasterize;
+use cuticle_render::frame::draw::draw_strands;
 use cuticle_render::{Scene, SceneSpec};
 use cuticle_trace::Accel;
 use glam::DVec3;
@@ -22,7 +22,7 @@ struct Probe {
     scene: Scene,
     accel: Accel,
     view: cuticle_render::scene::camera::View,
-    cov: cuticle_render::frame::raster::Coverage,
+    cov: cuticle_render::frame::draw::Coverage,
 }
 
 /// A pixel's true coverage and the mean environment radiance seen through it.
@@ -40,7 +40,7 @@ impl Probe {
         let scene = Scene::load_without_lights(spec).unwrap();
         let accel = Accel::build(&scene.groom);
         let view = scene.camera.view(SIZE.0, SIZE.1);
-        let cov = rasterize(
+        let cov = draw_strands(
             &scene.groom,
             &view,
             SIZE.0,

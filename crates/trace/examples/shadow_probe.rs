@@ -1,10 +1,10 @@
-//! The deep opacity maps' transmittance (render's frame/shadow.rs, sharp lights) against exact
+//! The deep opacity maps' transmittance (render's frame/shadows.rs, sharp lights) against exact
 //! ray casting through the path tracer's tubes, from the groom's points, for 19 light
 //! directions: the mean over the bottom fifth of the groom (by height) and over all points.
 //! `cargo run --release --example shadow_probe [GROOM [visible]]`: GROOM a preset or a .hair
 //! file (default: straight); `visible`: only the points the default camera sees at 360 × 240
 //! (else every third point). Issue 13's instrument for the tips.
-use cuticle_render::frame::shadow::{ShadowOptions, transmittance};
+use cuticle_render::frame::shadows::{ShadowOptions, transmittance};
 use cuticle_render::{Scene, SceneSpec};
 use cuticle_trace::Accel;
 use glam::DVec3;
@@ -24,7 +24,7 @@ fn main() {
     let visible_only = args.get(2).map(String::as_str) == Some("visible");
     let all: Vec<u32> = if visible_only {
         let view = scene.camera.view(360, 240);
-        cuticle_render::frame::raster::rasterize(groom, &view, 360, 240, 8)
+        cuticle_render::frame::draw::draw_strands(groom, &view, 360, 240, 8)
             .visible_points(groom.point_count())
     } else {
         (0..groom.point_count() as u32).step_by(3).collect()

@@ -163,7 +163,7 @@ fn opens_on_the_default_scene_and_matches_its_snapshot() {
     let (img, strands) = frame(&h);
     let (bg, hair) = background_and_hair(&strands);
     // Fully covered pixels: the default groom's fibres are thinner than a subsample here and
-    // cover theirs stochastically (frame/raster.rs), so fewer pixels are whole (327 measured).
+    // cover theirs stochastically (frame/draw.rs), so fewer pixels are whole (327 measured).
     assert!(
         hair.len() > 200 && bg.len() > 500,
         "hair {} background {}",

@@ -9,7 +9,7 @@
 //! so no background mixes in) in every coverage given: `coverage.exr` of A's folder, of B's, and
 //! `--coverage FILE`, whichever exist (at least one). Both sides' masks count because they differ
 //! where hair is thin: the SRBF and brute renders cover a fiber thinner than a subsample
-//! stochastically (its true width on average, frame/raster.rs), the path tracer's coverage (the
+//! stochastically (its true width on average, frame/draw.rs), the path tracer's coverage (the
 //! fraction of its camera rays that meet a tube) by its own rays, so a pixel one calls full may
 //! show the background in the other. With `--minus A0/ B0/`,
 //! A − A0 is compared against B − B0: multiple scattering as a full render minus a direct one.

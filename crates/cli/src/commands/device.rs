@@ -26,7 +26,7 @@ pub struct GpuRendered {
     pub visible_points: usize,
     pub coverage: f64,
     /// The visibility buffer drawn (for coverage.exr).
-    pub visibility: cuticle_render::frame::raster::Coverage,
+    pub visibility: cuticle_render::frame::draw::Coverage,
     pub timings: Timings,
     pub device: Value,
 }

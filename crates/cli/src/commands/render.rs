@@ -510,7 +510,7 @@ pub fn seconds_json(t: &Timings) -> Value {
 
 /// Each pixel's hair coverage (the fraction of its subsamples a strand covers) in all three
 /// channels: the mask `cuticle compare` averages over.
-fn coverage_image(coverage: &cuticle_render::frame::raster::Coverage) -> Image {
+fn coverage_image(coverage: &cuticle_render::frame::draw::Coverage) -> Image {
     let (width, height) = (coverage.width, coverage.height);
     Image {
         width,

@@ -1,4 +1,4 @@
-// frame/raster.rs's drawing on the GPU: strands as capsules of their projected width (at least
+// frame/draw.rs's drawing on the GPU: strands as capsules of their projected width (at least
 // a subsample, covering each subsample with probability true width / drawn width by the same
 // hash as the CPU's) into the supersampled visibility buffer, each subsample keeping the nearest segment (the lowest
 // segment among equal depths, as the CPU's strictly-nearer test in segment order keeps), and

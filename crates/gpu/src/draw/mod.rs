@@ -1,4 +1,4 @@
-//! Stage 2 on the GPU: strands drawn into the supersampled visibility buffer, frame/raster.rs's
+//! Stage 2 on the GPU: strands drawn into the supersampled visibility buffer, frame/draw.rs's
 //! rasteriser (the reference) run as compute passes of `draw.wgsl`, one dispatch per step:
 //! 1. `project`: every point to subsample coordinates, its depth and its half width;
 //! 2. `count_lines`: each segment's count of lines along its major axis within the image;

@@ -1,10 +1,10 @@
 //! Stage 3 on the GPU: T̃ of every lit SRBF light at every visible point, from deep opacity maps
-//! (Yuksel & Keyser 2008) filtered to each light's bandwidth, frame/shadow.rs's maps (the
-//! reference, in f64) built and read in `opacity_maps.wgsl`, one dispatch per step over all
+//! (Yuksel & Keyser 2008) filtered to each light's bandwidth, frame/shadows.rs's maps (the
+//! reference, in f64) built and read in `shadows.wgsl`, one dispatch per step over all
 //! lights at once:
 //! 1. `first_hair`: every segment sampled at most a texel apart, the first hair of each texel;
 //! 2. `fill_layers`: each sample's fiber count (projected fiber area per texel area) into its
-//!    layer behind that first hair ([`cuticle_render::frame::shadow::LAYERS`]);
+//!    layer behind that first hair ([`cuticle_render::frame::shadows::LAYERS`]);
 //! 3. `sum_rows` and 4. `sum_columns`: each layer's summed-area table;
 //! 5. `transmittance`: T̃ = exp(−density × depth) at each visible point, each layer boxed to the
 //!    light's bandwidth, into the buffer the shading pass reads (no CPU round trip).
@@ -22,16 +22,16 @@ use crate::buffers;
 use bytemuck::{Pod, Zeroable};
 use cuticle_groom::Groom;
 use cuticle_render::WorldLight;
-use cuticle_render::frame::shadow::{LAYERS, MapFrame, NL, ShadowOptions};
+use cuticle_render::frame::shadows::{LAYERS, MapFrame, NL, ShadowOptions};
 use glam::DVec3;
 
-/// Invocations per workgroup (opacity_maps.wgsl's `@workgroup_size`).
+/// Invocations per workgroup (shadows.wgsl's `@workgroup_size`).
 pub const WORKGROUP: u32 = 64;
 /// Workgroups along x of a grid-stride dispatch over segments or points.
 const STRIDE_GROUPS: u32 = 1024;
-/// opacity_maps.wgsl's NO_MAP.
+/// shadows.wgsl's NO_MAP.
 const NO_MAP: u32 = u32::MAX;
-/// opacity_maps.wgsl's OTHER_BATCH: a light whose map another batch builds.
+/// shadows.wgsl's OTHER_BATCH: a light whose map another batch builds.
 const OTHER_BATCH: u32 = u32::MAX - 1;
 
 /// The entry points, in dispatch order.
@@ -43,7 +43,7 @@ pub const STEPS: [&str; 5] = [
     "transmittance",
 ];
 
-/// opacity_maps.wgsl's `ShadowParams`.
+/// shadows.wgsl's `ShadowParams`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct ShadowParams {
@@ -58,7 +58,7 @@ pub struct ShadowParams {
     pub layers: [f32; 8],
 }
 
-/// opacity_maps.wgsl's `MapRecord`.
+/// shadows.wgsl's `MapRecord`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct MapRecord {
@@ -78,7 +78,7 @@ pub struct ShadowPipelines {
     steps: Vec<wgpu::ComputePipeline>,
 }
 
-/// Bindings of opacity_maps.wgsl (0 the uniform, then storage buffers).
+/// Bindings of shadows.wgsl (0 the uniform, then storage buffers).
 const BINDINGS: u32 = 9;
 
 impl ShadowPipelines {
@@ -110,7 +110,7 @@ impl ShadowPipelines {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("opacity maps"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("opacity_maps.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("shadows.wgsl").into()),
         });
         let steps = STEPS
             .iter()

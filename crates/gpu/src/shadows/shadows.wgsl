@@ -1,4 +1,4 @@
-// frame/shadow.rs's deep opacity maps (Yuksel & Keyser 2008), one per lit SRBF light, built and
+// frame/shadows.rs's deep opacity maps (Yuksel & Keyser 2008), one per lit SRBF light, built and
 // read on the GPU: every entry point below is one dispatch of shadows/mod.rs, in its order.
 // Depths are keyed for atomicMax (the key is the bitwise NOT of an order-preserving u32 of the
 // f32 depth, so that a cleared 0 means no hair); optical depth is summed in fixed point
@@ -14,11 +14,11 @@ struct ShadowParams {
     scale: f32,
     density: f32,
     _pad: u32,
-    // frame/shadow.rs's LAYERS, padded to 8.
+    // frame/shadows.rs's LAYERS, padded to 8.
     layers: array<vec4<f32>, 2>,
 }
 
-// One map's frame (frame/shadow.rs's MapFrame) and the light it belongs to.
+// One map's frame (frame/shadows.rs's MapFrame) and the light it belongs to.
 struct MapRecord {
     centre: vec3<f32>,
     radius: f32,
@@ -101,7 +101,7 @@ fn key_depth(key: u32) -> f32 {
 }
 
 // A segment as the map sees it: its local ends, its fiber count per texel and its steps (at
-// most a texel apart), as frame/shadow.rs's `samples`.
+// most a texel apart), as frame/shadows.rs's `samples`.
 struct Seen {
     a: vec3<f32>,
     d: vec3<f32>,
@@ -204,7 +204,7 @@ fn sat_at(base: u32, x: i32, y: i32) -> u32 {
 }
 
 // Mean fiber count of layer l over the texels within `reach` of p (at least p's own), as
-// frame/shadow.rs's box_mean.
+// frame/shadows.rs's box_mean.
 fn box_mean(mi: u32, m: MapRecord, l: u32, p: vec3<f32>, reach: f32) -> f32 {
     let n = i32(params.n);
     let cx = i32(floor((p.x + m.radius) / m.texel));
@@ -220,7 +220,7 @@ fn box_mean(mi: u32, m: MapRecord, l: u32, p: vec3<f32>, reach: f32) -> f32 {
     return f32(sum) / params.scale / f32((x1 - x0 + 1) * (y1 - y0 + 1));
 }
 
-// Optical depth in front of world point x (frame/shadow.rs's `depth`): each layer averaged over
+// Optical depth in front of world point x (frame/shadows.rs's `depth`): each layer averaged over
 // a square of half side max(½ texel, λ × the layer's distance behind the first hair).
 fn optical_depth(mi: u32, x: vec3<f32>, lambda: f32) -> f32 {
     let m = maps[mi];

@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use cuticle_gpu::{GpuDevice, GpuRenderer, Preference, Visibility};
-use cuticle_render::frame::raster::{Coverage, EMPTY};
+use cuticle_render::frame::draw::{Coverage, EMPTY};
 use cuticle_render::{Image, Renderer, Scene, SceneSpec, ShadowOptions};
 use std::path::PathBuf;
 use std::sync::OnceLock;

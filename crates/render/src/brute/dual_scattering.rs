@@ -105,17 +105,18 @@ fn cos_ratio(theta_o: f64, theta_i: f64) -> f64 {
 }
 
 impl BruteDual<'_> {
-    /// Multiple-scattering radiance toward `ao` from every light, `direct` holding their T̃_k.
+    /// Multiple-scattering radiance toward `ao` from every light, `transmittance` holding their
+    /// T̃_k.
     pub fn shade(
         &self,
         fiber: &MarschnerParams,
         ao: FiberAngles,
         lights: &[LocalDirectional],
-        direct: &[f32],
+        transmittance: &[f32],
     ) -> DVec3 {
         lights
             .iter()
-            .zip(direct)
+            .zip(transmittance)
             .map(|(light, &t)| self.light(fiber, ao, light, t as f64))
             .sum()
     }

@@ -145,7 +145,13 @@ pub fn keeps(strand: u32, subsample: u32, half: f32, true_half: f32) -> bool {
 
 /// Rasterises every segment of `groom` seen through `view` into `width × height` pixels of
 /// `ss × ss` subsamples.
-pub fn rasterize(groom: &Groom, view: &View, width: usize, height: usize, ss: usize) -> Coverage {
+pub fn draw_strands(
+    groom: &Groom,
+    view: &View,
+    width: usize,
+    height: usize,
+    ss: usize,
+) -> Coverage {
     let ss = ss.max(1);
     let capsules = capsules(groom, view, ss as f32);
     let (sw, sh) = (width * ss, height * ss);
@@ -373,7 +379,7 @@ mod tests {
             ..Default::default()
         })
         .unwrap();
-        let cov = rasterize(&groom, &view(), SIDE, SIDE, SS);
+        let cov = draw_strands(&groom, &view(), SIDE, SIDE, SS);
         let n = cov.segment.iter().filter(|&&s| s != EMPTY).count();
         // ∫ width along each strand (trapezoids, as widths are interpolated per segment).
         let segment = (LENGTH * subsamples_per_unit()) as f64 / (POINTS - 1) as f64;

@@ -8,11 +8,11 @@
 use crate::brute::dual_scattering::BruteDual;
 use crate::brute::half_circle::ExactHalfCircle;
 use crate::brute::single_scattering::{self as brute, Directional};
+use crate::frame::draw::{Coverage, EMPTY, draw_strands};
 use crate::frame::fiber_frames::{frame_at, strand_of_points};
 use crate::frame::progress::{Counter, Progress};
-use crate::frame::raster::{Coverage, EMPTY, rasterize};
 use crate::frame::reshade::{Shaded, SharedInputs, stale_points};
-use crate::frame::shadow::{ShadowOptions, transmittance};
+use crate::frame::shadows::{ShadowOptions, transmittance};
 use crate::frame::sub_lights::split_wide;
 use crate::preview::PREVIEW_TABLE_NODES;
 use crate::scene::camera::View;
@@ -226,7 +226,7 @@ impl Renderer {
         let spec = &scene.spec;
         let start = Instant::now();
         let view = scene.camera.view(spec.width, spec.height);
-        let coverage = rasterize(
+        let coverage = draw_strands(
             &scene.groom,
             &view,
             spec.width,

@@ -6,7 +6,7 @@
 //! ([`crate::Renderer::shade_reusing`]) copies the colours whose inputs are unchanged and shades
 //! the rest: the same image, bit for bit, as shading every point.
 
-use crate::frame::shadow::ShadowOptions;
+use crate::frame::shadows::ShadowOptions;
 use crate::scene::hair::HairParams;
 use crate::scene::{Lobes, Method, Scene};
 use cuticle_fiber::marschner2003::MarschnerParams;

@@ -142,12 +142,12 @@ pub fn transmittance(
 
 /// Deep opacity maps of directional lights (λ = 0), kept to read T̃ at any world point
 /// (where the groom may later be sampled, not only at its points).
-pub struct DirectionalMaps {
+pub struct DirectionalShadows {
     maps: Vec<OpacityMap>,
     density: f64,
 }
 
-impl DirectionalMaps {
+impl DirectionalShadows {
     /// One map per direction (unit vectors toward the lights), parallel over them.
     pub fn build(groom: &Groom, directions: &[DVec3], options: &ShadowOptions) -> Self {
         let maps = if options.density <= 0.0 || groom.point_count() == 0 {

@@ -9,7 +9,7 @@ pub mod hair;
 pub mod memory;
 pub mod resample;
 
-use crate::frame::shadow::ShadowOptions;
+use crate::frame::shadows::ShadowOptions;
 use crate::scene::camera::Camera;
 use crate::scene::hair::HairParams;
 use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};

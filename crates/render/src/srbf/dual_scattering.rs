@@ -30,7 +30,7 @@
 
 use crate::angles::Outgoing;
 use crate::angles::wrap_pi;
-use crate::frame::shadow::ShadowOptions;
+use crate::frame::shadows::ShadowOptions;
 use crate::srbf::cg_lobes::r_coefficients_in;
 use crate::srbf::circular_gaussian as cg;
 use crate::srbf::forward_scattering::{Forward, forward};
@@ -94,14 +94,14 @@ pub fn srbf_integral(lambda: f64) -> f64 {
 
 impl Dual<'_> {
     /// Multiple-scattering radiance toward (θ_o, φ_o) from every light; `lights` carry the
-    /// unshadowed coefficients L_j, `direct` the transmittances T̃_j.
+    /// unshadowed coefficients L_j, `transmittance` their T̃_j.
     pub fn shade<L: AzimuthalLobes>(
         &self,
         fiber: ShadingFiber<L>,
         theta_o: f64,
         phi_o: f64,
         lights: &[LocalLight],
-        direct: &[f32],
+        transmittance: &[f32],
     ) -> DVec3 {
         let view = PointView {
             outgoing: Outgoing::new(theta_o),
@@ -114,7 +114,7 @@ impl Dual<'_> {
         };
         lights
             .iter()
-            .zip(direct)
+            .zip(transmittance)
             .map(|(light, &t)| self.light(fiber, &view, light, t as f64))
             .sum()
     }

@@ -5,7 +5,7 @@
 
 use crate::shading::{NO_STRAND, Shading, StrandBuffer};
 use cuticle_groom::GroomParts;
-use cuticle_render::frame::raster::EMPTY;
+use cuticle_render::frame::draw::EMPTY;
 use cuticle_render::{
     Image, Prepared, Renderer, Scene, Shaded, ShadowOptions, Timings, WorldLight,
 };

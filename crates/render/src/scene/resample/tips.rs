@@ -18,7 +18,7 @@
 //! the image (docs/tips.md has both measurements).
 
 use super::knots::{Knots, rebuild, segment_at};
-use crate::frame::shadow::{DirectionalMaps, ShadowOptions};
+use crate::frame::shadows::{DirectionalShadows, ShadowOptions};
 use crate::frame::sub_lights::fibonacci_sphere;
 use cuticle_groom::Groom;
 use rayon::prelude::*;
@@ -47,7 +47,7 @@ pub fn split_tips(groom: Groom) -> Groom {
     if !texel.is_finite() || texel <= 0.0 {
         return groom;
     }
-    let maps = DirectionalMaps::build(
+    let maps = DirectionalShadows::build(
         &groom,
         &fibonacci_sphere(PROBES),
         &ShadowOptions {
@@ -83,7 +83,7 @@ struct Piece {
 }
 
 /// Strand `s`'s knots: its points, and the midpoints its last stretch keeps.
-fn strand_knots(groom: &Groom, s: usize, maps: &DirectionalMaps, lengths: Lengths) -> Vec<f64> {
+fn strand_knots(groom: &Groom, s: usize, maps: &DirectionalShadows, lengths: Lengths) -> Vec<f64> {
     let pos = &groom.positions()[groom.strand_range(s)];
     let mut knots: Vec<f64> = (0..pos.len()).map(|i| i as f64).collect();
     if pos.len() < 2 {
