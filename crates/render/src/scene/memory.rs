@@ -27,10 +27,12 @@ const PER_PIXEL: u64 = 120;
 /// Bytes per point of one light's transmittance (the compact buffer, the per-light columns
 /// and the frame's buffer, f32 each).
 const SHADOW_PER_POINT_AND_LIGHT: u64 = 12;
-/// Bytes per texel of an opacity map: first depth, six layers and their summed-area tables.
-const PER_TEXEL: u64 = 100;
-/// Bytes per point of the depth samples one opacity map draws from (a few per segment).
-const MAP_SAMPLES_PER_POINT: u64 = 96;
+/// Bytes per texel of an opacity map: first depth (and its copy while building), six layers
+/// summed in place into their summed-area tables.
+const PER_TEXEL: u64 = 56;
+/// Bytes per point of one opacity map: the groom's points in the map's frame (its depth
+/// samples are generated, not stored).
+const MAP_SAMPLES_PER_POINT: u64 = 24;
 /// The renderer's tables, the default environment and its fit, and everything else of fixed
 /// size (tests/memory.rs measures the peak against the whole estimate).
 const FIXED: u64 = 40 << 20;
