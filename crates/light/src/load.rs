@@ -76,6 +76,18 @@ fn validated(path: &Path, raw: RawImage) -> Result<EnvMap, LightError> {
             value: rgb[index],
         });
     }
+    if let Some(index) = rgb
+        .iter()
+        .position(|&v| v > crate::srbf::MAX_RADIANCE as f32)
+    {
+        let pixel = index / 3;
+        return Err(LightError::TooBright {
+            path: path.to_path_buf(),
+            column: pixel % width,
+            row: pixel / width,
+            value: rgb[index],
+        });
+    }
     let clamped = rgb.iter().filter(|v| **v < 0.0).count();
     let pixels = rgb
         .chunks_exact(3)
@@ -120,6 +132,17 @@ mod tests {
                 other => panic!("expected NonFinite, got {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn pixels_brighter_than_a_light_may_be_are_refused() {
+        let mut image = raw(8, 4, 1.0);
+        image.rgb[3 * (8 + 2)] = 3e38;
+        match validated(Path::new("x.exr"), image) {
+            Err(LightError::TooBright { column, row, .. }) => assert_eq!((column, row), (2, 1)),
+            other => panic!("expected TooBright, got {other:?}"),
+        }
+        assert!(validated(Path::new("x.exr"), raw(8, 4, 1e20)).is_ok());
     }
 
     #[test]

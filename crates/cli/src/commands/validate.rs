@@ -213,6 +213,17 @@ fn noise_twins(configs: &[SimConfig], dir: &std::path::Path) -> Result<Vec<SimCo
                     c.name
                 );
             };
+            if c.grid != twin.grid {
+                bail!(
+                    "--noise: {} is on a {}x{} grid, {} on {}x{}: the second run needs the same grid",
+                    twin.dir.display(),
+                    twin.grid[0],
+                    twin.grid[1],
+                    c.dir.display(),
+                    c.grid[0],
+                    c.grid[1]
+                );
+            }
             if !c.same_setup(twin) {
                 bail!(
                     "--noise: {} differs from {} in its parameters or number of paths",

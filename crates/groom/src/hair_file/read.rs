@@ -2,7 +2,9 @@
 
 use super::HairFile;
 use super::header::{HEADER_LEN, Header};
-use super::layout::{Layout, check_defaults_finite, check_finite, check_segment_sum};
+use super::layout::{
+    Layout, check_bounded, check_defaults_finite, check_finite, check_segment_sum,
+};
 use crate::error::{HairArray, HairFileError};
 use glam::Vec3;
 use std::io::Read;
@@ -64,6 +66,16 @@ fn decode_arrays(header: Header, layout: &Layout, bytes: &[u8]) -> Result<HairFi
     check_floats(HairArray::Thickness, &thickness)?;
     check_floats(HairArray::Transparency, &transparency)?;
     check_vec3s(HairArray::Colors, &colors)?;
+    if let Some(points) = &points {
+        check_bounded(
+            HairArray::Points,
+            points.iter().flat_map(|p| p.to_array()),
+            3,
+        )?;
+    }
+    if let Some(thickness) = &thickness {
+        check_bounded(HairArray::Thickness, thickness.iter().copied(), 1)?;
+    }
     Ok(HairFile {
         strand_count: header.strand_count,
         point_count: header.point_count,

@@ -15,7 +15,9 @@ use crate::scene::hair::HairParams;
 use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
-use cuticle_light::{EnvMap, FitOptions, MAX_LIGHTS, SrbfLight, fit_srbf, load_or_default};
+use cuticle_light::{
+    EnvMap, FitOptions, MAX_LIGHTS, MAX_RADIANCE, SrbfLight, fit_srbf, load_or_default,
+};
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Deserializer, Serialize};
 use std::path::{Path, PathBuf};
@@ -442,7 +444,8 @@ pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
     };
     let bad = || {
         SceneError::Invalid(format!(
-            "environment {spec}: constant takes one radiance or R,G,B, each finite and >= 0"
+            "environment {spec}: constant takes one radiance or R,G,B, each finite and in \
+             [0, {MAX_RADIANCE:e}]"
         ))
     };
     let parsed: Vec<f32> = values
@@ -454,7 +457,7 @@ pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
         [r, g, b] => Vec3::new(*r, *g, *b),
         _ => return Err(bad()),
     };
-    if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
+    if !(rgb.is_finite() && rgb.min_element() >= 0.0 && rgb.max_element() <= MAX_RADIANCE as f32) {
         return Err(bad());
     }
     Ok(EnvMap::new(16, 8, vec![rgb; 16 * 8]))
