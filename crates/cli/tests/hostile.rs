@@ -1384,3 +1384,50 @@ fn issue57_memory_checks_read_the_address_space_limit_and_advise_per_command() {
     );
     assert!(!tmp.path().join("out").exists());
 }
+
+/// The arguable item of issue 57: a FIFO given as `--scene` blocked forever, and reads had no
+/// size cap. Every input file must be a regular file of a sane size.
+#[test]
+fn issue57_special_and_oversized_input_files_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let fifo = dir.join("fifo");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let fifo = fifo.display().to_string();
+    let sparse = dir.join("sparse.toml");
+    std::fs::File::create(&sparse)
+        .unwrap()
+        .set_len(20 << 30)
+        .unwrap();
+    let sparse = sparse.display().to_string();
+    let out = dir.join("out").display().to_string();
+    let render = with(&["render"], &B);
+    let rows: Vec<(Vec<String>, &str)> = vec![
+        (with(&render, &["--scene", &fifo]), "not a regular file"),
+        (
+            with(&render, &["--scene", "/dev/zero"]),
+            "not a regular file",
+        ),
+        (with(&render, &["--scene", &sparse]), "more than the"),
+        (with(&render, &["--env", &fifo]), "not a regular file"),
+        (with(&render, &["--env", &sparse]), "more than the"),
+        (with(&render, &["--groom", &fifo]), "not a regular file"),
+        (
+            with(&with(&["render"], &B[..8]), &["--lights", &fifo]),
+            "not a regular file",
+        ),
+        (
+            with(&["env", "fit", "--env", "/dev/zero"], &[]),
+            "not a regular file",
+        ),
+        (with(&["sweep", "--grid", &fifo], &[]), "not a regular file"),
+    ];
+    for (mut args, needle) in rows {
+        args.extend(["--out".into(), out.clone()]);
+        assert_refused(&args.iter().map(String::as_str).collect::<Vec<_>>(), needle);
+    }
+    assert_refused(&["groom", "info", &fifo], "not a regular file");
+    assert!(!dir.join("out").exists());
+}

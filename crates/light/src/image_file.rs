@@ -85,9 +85,11 @@ pub const MAX_DECODE_BYTES: usize = MAX_READ_PIXELS * 3 * 8 + (1 << 20);
 /// header that claims more pixels than the file's bytes could hold, and NaN or infinite
 /// pixels (naming the first).
 pub fn read_rgb_exr(path: &Path) -> Result<LinearImage, LightError> {
-    let bytes = std::fs::read(path).map_err(|e| LightError::Image {
-        path: path.to_path_buf(),
-        message: e.to_string(),
+    let bytes = crate::file::read_regular(path, crate::file::MAX_IMAGE_FILE).map_err(|e| {
+        LightError::Image {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        }
     })?;
     rgb_exr_from_bytes(path, &bytes)
 }

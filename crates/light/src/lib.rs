@@ -39,6 +39,7 @@ mod color;
 mod env_map;
 mod error;
 mod exr_reader;
+pub mod file;
 mod fit;
 mod hdr;
 pub mod image_file;

@@ -25,9 +25,11 @@ const MAX_PIXELS_PER_BYTE: usize = 200;
 /// corrupt data, a shape that is not about 2:1, NaN or infinite pixels. Negative values are
 /// clamped to 0 and counted ([`EnvMap::clamped_negatives`]).
 pub fn load_env_map(path: &Path) -> Result<EnvMap, LightError> {
-    let bytes = std::fs::read(path).map_err(|source| LightError::Io {
-        path: path.to_path_buf(),
-        source,
+    let bytes = crate::file::read_regular(path, crate::file::MAX_IMAGE_FILE).map_err(|source| {
+        LightError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
     })?;
     let max_pixels = MAX_PIXELS.min(max_pixels_of(bytes.len()));
     let raw = if is_exr(&bytes) {

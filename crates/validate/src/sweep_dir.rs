@@ -18,6 +18,9 @@ use std::path::{Path, PathBuf};
 
 /// The record a finished configuration leaves.
 pub const RECORD: &str = "sim.json";
+/// The largest `sim.json` read (a real one is under 2 kB). `path.is_file()` already keeps out
+/// pipes and devices.
+const MAX_RECORD_BYTES: u64 = 1 << 20;
 
 /// One simulated configuration.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -51,6 +54,13 @@ impl SimConfig {
         let path = dir.join(RECORD);
         if !path.is_file() {
             return Err(ValidateError::NoRecord(dir.to_path_buf()));
+        }
+        let len = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        if len > MAX_RECORD_BYTES {
+            return Err(ValidateError::BadRecord {
+                path,
+                message: format!("is {len} bytes; a record is at most {MAX_RECORD_BYTES}"),
+            });
         }
         let text = fs::read_to_string(&path).map_err(|source| ValidateError::Io {
             path: path.clone(),

@@ -445,8 +445,8 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
             cuticle_light::MAX_LIGHTS
         );
     }
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = cuticle_light::file::read_regular_text(path, MAX_LIGHTS_FILE)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     let value: Value =
         serde_json::from_str(&text).with_context(|| format!("{} is not JSON", path.display()))?;
     let lights = value

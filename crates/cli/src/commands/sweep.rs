@@ -64,7 +64,7 @@ fn configs(grid_arg: &str) -> Result<Vec<SweepConfig>> {
                     "grid file {file} is {size} bytes; a grid file holds at most {MAX_GRID_FILE}"
                 );
             }
-            let text = std::fs::read_to_string(file)
+            let text = cuticle_light::file::read_regular_text(Path::new(file), MAX_GRID_FILE)
                 .with_context(|| format!("cannot read grid file {file}"))?;
             Ok(grid::from_json(&text)?)
         }

@@ -252,7 +252,7 @@ fn read_lobes(config: &SimConfig) -> Result<[LatLongImage; 5]> {
     let [r, tt, trt, trrt, rest, total] = FILES.map(read);
     let images = [r?, tt?, trt?, trrt?, rest?, total?];
     let csv_path = config.dir.join("azimuthal.csv");
-    let csv = std::fs::read_to_string(&csv_path)
+    let csv = cuticle_light::file::read_regular_text(&csv_path, cuticle_light::file::MAX_TEXT_FILE)
         .with_context(|| format!("cannot read {}", csv_path.display()))?;
     config.check_set(&images, &csv)?;
     let [r, tt, trt, trrt, rest, _] = images;

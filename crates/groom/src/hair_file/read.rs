@@ -20,8 +20,8 @@ impl HairFile {
 
     /// Reads a file from disk. Its size is checked against the header before the rest is read.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, HairFileError> {
+        let len = regular_file_len(path.as_ref())?;
         let mut file = std::fs::File::open(path)?;
-        let len = file.metadata()?.len();
         let mut head = [0; HEADER_LEN];
         if len < HEADER_LEN as u64 {
             return Err(HairFileError::HeaderTruncated { len });
@@ -35,6 +35,19 @@ impl HairFile {
         layout.check_len(bytes.len() as u64)?;
         decode_arrays(header, &layout, &bytes)
     }
+}
+
+/// The length of `path` if it is a regular file. Checked before it is opened: opening a FIFO
+/// for reading blocks until a writer comes (issue 57), and a device has no length.
+pub(crate) fn regular_file_len(path: &Path) -> std::io::Result<u64> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a folder, pipe or device)",
+        ));
+    }
+    Ok(meta.len())
 }
 
 /// Decodes and checks the header of a file of `file_len` bytes that starts with `bytes`.

@@ -261,10 +261,11 @@ pub fn maybe_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, 
 impl SceneSpec {
     /// Reads a TOML scene file; missing keys keep their defaults.
     pub fn from_toml_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: path.into(),
-            source,
-        })?;
+        let text = cuticle_light::file::read_regular_text(path, cuticle_light::file::MAX_TEXT_FILE)
+            .map_err(|source| SceneError::Read {
+                path: path.into(),
+                source,
+            })?;
         toml::from_str(&text).map_err(|e| SceneError::Toml {
             path: path.into(),
             at: e
