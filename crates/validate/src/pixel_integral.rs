@@ -85,7 +85,9 @@ impl PixelRule {
 /// The five lobe images of `model` for light at `theta_i`, each pixel the mean of S over it, in
 /// θ on the panels `breaks` (edges in θ_o, finest near the cones: the furnace's,
 /// `cuticle_fiber::furnace::theta_breaks`) cut at each row's edges, `nodes` Gauss–Legendre
-/// points per piece, and `phi_nodes` points per column. On the furnace's own panels the images'
+/// points per whole panel (a piece of a panel gets its share, at least two: rows far thinner
+/// than the panels there, at large widths, do not each take `nodes`), and `phi_nodes` points
+/// per column. On the furnace's own panels the images'
 /// energy is the furnace's albedo at any β, however much narrower than a row a lobe is (issue 57
 /// #15: `cuticle lobes` sampled pixel centres, and its images held 4.6× the TT energy at
 /// β = 0.003).
@@ -97,7 +99,6 @@ pub fn integrate_lobes_on_breaks(
     nodes: usize,
     phi_nodes: usize,
 ) -> [LatLongImage; 5] {
-    let gl = GaussLegendre::cached(nodes);
     let phi_rule = GaussLegendre::cached(phi_nodes);
     let rows: Vec<Vec<(f64, f64)>> = (0..grid.height)
         .map(|k| {
@@ -106,13 +107,29 @@ pub fn integrate_lobes_on_breaks(
             edges.extend(breaks.iter().copied().filter(|b| *b > bottom && *b < top));
             edges.sort_by(f64::total_cmp);
             let scale = 0.5 * grid.d_phi() / grid.pixel_solid_angle(k);
-            gl.panel_nodes(&edges)
-                .into_iter()
+            edges
+                .windows(2)
+                .flat_map(|piece| {
+                    let share = (piece[1] - piece[0]) / panel_width(breaks, piece[0], piece[1]);
+                    let n = ((nodes as f64 * share).ceil() as usize).clamp(2, nodes.max(2));
+                    GaussLegendre::cached(n).panel_nodes(piece)
+                })
                 .map(|(theta, w)| (theta, w * theta.cos() * scale))
                 .collect()
         })
         .collect();
     integrate_rows(model, theta_i, grid, &rows, phi_rule)
+}
+
+/// The width of the panel of `breaks` (sorted) that holds the piece [a, b]; the piece's own
+/// width outside them.
+fn panel_width(breaks: &[f64], a: f64, b: f64) -> f64 {
+    let mid = 0.5 * (a + b);
+    let upper = breaks.partition_point(|&x| x <= mid);
+    match (upper.checked_sub(1).map(|i| breaks[i]), breaks.get(upper)) {
+        (Some(lo), Some(&hi)) => hi - lo,
+        _ => b - a,
+    }
 }
 
 /// Each pixel's Σ over its row's θ nodes (weights already divided by the pixel's solid angle
