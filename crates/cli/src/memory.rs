@@ -1,7 +1,10 @@
-//! How much memory this process may still take: what the kernel reports available, within the
-//! cgroup's limit when there is one. Commands compare it with what their work needs
-//! (`cuticle_render::scene::memory`) before allocating, and refuse with a sentence rather than
-//! be killed half way. `CUTICLE_MEMORY_LIMIT` (bytes) caps it further.
+//! How much memory this process may still take: the least of what the kernel reports
+//! available, the cgroup's limit less its use (v2, else v1), and the process's own address-space
+//! limit (`RLIMIT_AS`, as `ulimit -v` or `prlimit --as` set it) less the address space it
+//! already maps (issue 57 #14: under `prlimit --as=4294967296` a groom of 10 GB aborted in the
+//! allocator). Commands compare it with what their work needs (`cuticle_render::scene::memory`)
+//! before allocating, and refuse with a sentence rather than be killed half way.
+//! `CUTICLE_MEMORY_LIMIT` (bytes) caps it further.
 
 use std::fs;
 
@@ -16,7 +19,30 @@ pub fn available() -> u64 {
         .ok()
         .and_then(|v| v.trim().parse::<u64>().ok())
         .unwrap_or(u64::MAX);
-    mem.min(cgroup_headroom().unwrap_or(u64::MAX)).min(limit)
+    mem.min(cgroup_headroom().unwrap_or(u64::MAX))
+        .min(address_space_headroom().unwrap_or(u64::MAX))
+        .min(limit)
+}
+
+/// `RLIMIT_AS` less the process's mapped address space (`VmSize` of /proc/self/status).
+#[cfg(target_os = "linux")]
+fn address_space_headroom() -> Option<u64> {
+    // SAFETY: getrlimit only writes the struct it is given.
+    let mut limit: libc::rlimit = unsafe { std::mem::zeroed() };
+    if unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut limit) } != 0
+        || limit.rlim_cur == libc::RLIM_INFINITY
+    {
+        return None;
+    }
+    let status = fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmSize:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some((limit.rlim_cur as u64).saturating_sub(kb.saturating_mul(1024)))
+}
+
+#[cfg(not(target_os = "linux"))]
+fn address_space_headroom() -> Option<u64> {
+    None
 }
 
 /// `MemAvailable` of /proc/meminfo.
@@ -27,10 +53,20 @@ fn meminfo_available() -> Option<u64> {
     Some(kb.saturating_mul(1024))
 }
 
-/// A cgroup v2 limit less what the cgroup already uses.
+/// A cgroup's limit less what the cgroup already uses: v2 (`memory.max`, "max" where there
+/// is none), else v1 (`memory/memory.limit_in_bytes`).
 fn cgroup_headroom() -> Option<u64> {
-    let read = |f: &str| fs::read_to_string(format!("/sys/fs/cgroup/{f}")).ok();
-    let max: u64 = read("memory.max")?.trim().parse().ok()?;
-    let current: u64 = read("memory.current")?.trim().parse().ok()?;
+    let read = |f: &str| {
+        fs::read_to_string(format!("/sys/fs/cgroup/{f}"))
+            .ok()
+            .and_then(|t| t.trim().parse::<u64>().ok())
+    };
+    let (max, current) = match (read("memory.max"), read("memory.current")) {
+        (Some(max), Some(current)) => (max, current),
+        _ => (
+            read("memory/memory.limit_in_bytes")?,
+            read("memory/memory.usage_in_bytes")?,
+        ),
+    };
     Some(max.saturating_sub(current))
 }

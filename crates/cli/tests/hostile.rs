@@ -884,3 +884,550 @@ fn view_refuses_what_would_hang_or_exhaust_it_before_opening_a_window() {
     }
     assert!(!tmp.path().join("shot.png").exists());
 }
+
+// Issue 57: the second attack, on the newer surfaces. Each test reproduced its defect first.
+
+/// A crafted file of ../shared/data/hostile, or `None` (said plainly) where the data folder is
+/// not beside the checkout.
+fn hostile(name: &str) -> Option<String> {
+    let path = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/data/hostile"
+    ))
+    .join(name);
+    if path.is_file() {
+        Some(path.display().to_string())
+    } else {
+        eprintln!("skipped: {} is not here", path.display());
+        None
+    }
+}
+
+/// A render of B into `dir/name` with `more` flags; its folder.
+fn small_render(dir: &Path, name: &str, more: &[&str]) -> String {
+    let out = dir.join(name).display().to_string();
+    let mut args = with(&["render", "--device", "cpu"], &B);
+    args.extend(more.iter().map(|s| s.to_string()));
+    args.extend(["--out".into(), out.clone()]);
+    assert_runs(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    out
+}
+
+/// #1: "memory allocation of 70368744177664 bytes failed", exit 134, from every reader of EXR.
+#[test]
+fn issue57_a_crafted_dwaa_exr_is_refused_by_every_reader() {
+    let Some(dwaa) = hostile("dwaa_dc_count_2e45.exr") else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let out = dir.join("out").display().to_string();
+    let good = small_render(dir, "good", &[]);
+    let spoiled = dir.join("spoiled");
+    std::fs::create_dir(&spoiled).unwrap();
+    for file in names(Path::new(&good)) {
+        std::fs::copy(Path::new(&good).join(&file), spoiled.join(&file)).unwrap();
+    }
+    std::fs::copy(&dwaa, spoiled.join("image.exr")).unwrap();
+    let spoiled = spoiled.display().to_string();
+    let render = with(&["render", "--env", &dwaa], &B);
+    let path = with(&render, &["--method", "path", "--spp", "1"]);
+    let rows: Vec<Vec<String>> = vec![
+        with(&["env", "fit", "--env", &dwaa, "--lights", "2"], &[]),
+        render,
+        path,
+        with(&["compare", &good, &spoiled], &[]),
+        with(&["compare", &good, &good, "--coverage", &dwaa], &[]),
+        with(
+            &[
+                "bench", "trace", "--groom", "straight", "--width", "32", "--height", "24",
+                "--spp", "1", "--env", &dwaa,
+            ],
+            &[],
+        ),
+    ];
+    for mut args in rows {
+        args.extend(["--out".into(), out.clone()]);
+        assert_refused(
+            &args.iter().map(String::as_str).collect::<Vec<_>>(),
+            "DWAA compression is not read",
+        );
+    }
+    assert!(!dir.join("out").exists());
+}
+
+/// #2 and #11: a groom at 1e20 panicked in the BVH builder; one at 3e38 gave `groom info`
+/// lengths of inf and bounds of null. One range (GroomParts::MAX_COORDINATE), checked on read.
+#[test]
+fn issue57_grooms_beyond_the_coordinate_range_are_refused_on_read() {
+    let (Some(x_1e20), Some(points_3e38)) = (
+        hostile("bangs_x_1e20.hair"),
+        hostile("bangs_points_3e38.hair"),
+    ) else {
+        return;
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out").display().to_string();
+    let small = ["--width", "32", "--height", "24", "--supersampling", "1"];
+    for groom in [&x_1e20, &points_3e38] {
+        let path = with(
+            &["render", "--method", "path", "--spp", "2", "--groom", groom],
+            &small,
+        );
+        let srbf = with(&["render", "--lights", "4", "--groom", groom], &small);
+        let bench = with(
+            &[
+                "bench", "trace", "--width", "32", "--height", "24", "--spp", "1",
+            ],
+            &["--groom", groom],
+        );
+        for mut args in [path, srbf, bench] {
+            args.extend(["--out".into(), out.clone()]);
+            assert_refused(
+                &args.iter().map(String::as_str).collect::<Vec<_>>(),
+                "the largest a groom may hold",
+            );
+        }
+        for info in [
+            vec!["groom", "info", groom],
+            vec!["groom", "info", "--json", groom],
+        ] {
+            assert_refused(&info, "the largest a groom may hold");
+        }
+    }
+    assert!(!tmp.path().join("out").exists());
+}
+
+/// A one-configuration sweep of `rays` paths with `seed` into `dir`; its configuration folder.
+fn one_config_sweep(dir: &Path, seed: &str) -> std::path::PathBuf {
+    let grid = dir.with_extension("grid.json");
+    std::fs::write(
+        &grid,
+        r#"[{"theta_i": 0.5, "alpha_deg": -2, "beta": 0.08, "eta": 1.55, "mu_a": 0.2}]"#,
+    )
+    .unwrap();
+    assert_runs(&[
+        "sweep",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--rays",
+        "20000",
+        "--seed",
+        seed,
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.is_dir() && !p.file_name().unwrap().to_string_lossy().starts_with('.'))
+        .unwrap()
+}
+
+/// Rewrites `"params"."key"` of `config`/sim.json.
+fn edit_sim_json(config: &Path, key: &str, value: serde_json::Value) {
+    let path = config.join("sim.json");
+    let mut record: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    record["params"][key] = value;
+    std::fs::write(&path, serde_json::to_vec_pretty(&record).unwrap()).unwrap();
+}
+
+/// #3: `validate --noise` with runs on two grids panicked ("two runs on different grids");
+/// #10: θ_i = 10 in sim.json validated to energies of 0, θ_i = 1e308 to a report of NaN.
+#[test]
+fn issue57_validate_refuses_other_grids_and_parameters_outside_their_ranges() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (a, b) = (tmp.path().join("a"), tmp.path().join("b"));
+    one_config_sweep(&a, "1");
+    let twin = one_config_sweep(&b, "2");
+    edit_sim_json(&twin, "grid", serde_json::json!([20, 5]));
+    let out = tmp.path().join("out").display().to_string();
+    let (a_s, b_s) = (a.display().to_string(), b.display().to_string());
+    assert_refused(
+        &["validate", "--sim", &a_s, "--noise", &b_s, "--out", &out],
+        "the second run needs the same grid",
+    );
+    for (key, value, needle) in [
+        ("theta_i", serde_json::json!(10.0), "theta_i must be"),
+        ("theta_i", serde_json::json!(1e308), "theta_i must be"),
+        ("beta", serde_json::json!(0.0), "beta must be"),
+        ("eta", serde_json::json!(0.5), "eta must be"),
+        ("alpha_deg", serde_json::json!(90.0), "alpha_deg must be"),
+        ("mu_a", serde_json::json!([0.2, -1.0, 0.2]), "mu_a must be"),
+    ] {
+        let config = one_config_sweep(&tmp.path().join(format!("{key}{value}")), "1");
+        edit_sim_json(&config, key, value);
+        let sim = config.parent().unwrap().display().to_string();
+        assert_refused(&["validate", "--sim", &sim, "--out", &out], needle);
+    }
+    assert!(!tmp.path().join("out").exists());
+}
+
+/// #5 and #12: a map or constant beyond what a light may be (3e38) rendered +inf pixels with
+/// exit 0, and `env fit` wrote coefficients `render --lights` refused. One bound
+/// (cuticle_light::MAX_RADIANCE = MAX_COEFFICIENT) at both ends.
+#[test]
+fn issue57_radiance_beyond_a_lights_bound_is_refused_where_it_is_read() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out").display().to_string();
+    let path = with(
+        &[
+            "render", "--method", "path", "--spp", "4", "--mu-a", "0", "--eta", "1.01",
+        ],
+        &[
+            "--max-depth",
+            "50",
+            "--strands",
+            "30",
+            "--width",
+            "48",
+            "--height",
+            "32",
+        ],
+    );
+    let mut rows: Vec<(Vec<String>, &str)> = Vec::new();
+    for env in [
+        "constant:3e38",
+        "constant:3.4028235e38",
+        "constant:1,1,2e20",
+    ] {
+        rows.push((with(&path, &["--env", env]), "constant takes"));
+    }
+    if let Some(map) = hostile("radiance_3e38.exr") {
+        rows.push((
+            with(&path, &["--env", &map]),
+            "above the 1e20 a map may hold",
+        ));
+        rows.push((
+            with(&["env", "fit", "--lights", "4", "--env", &map], &[]),
+            "above the 1e20 a map may hold",
+        ));
+    }
+    for (mut args, needle) in rows {
+        args.extend(["--out".into(), out.clone()]);
+        assert_refused(&args.iter().map(String::as_str).collect::<Vec<_>>(), needle);
+    }
+    assert!(!tmp.path().join("out").exists());
+    // The brightest map a fit reads gives lights a render reads.
+    let bright: Vec<glam::DVec3> = (0..32 * 16)
+        .map(|k| glam::DVec3::splat(if k == 100 { 1e20 } else { 1.0 }))
+        .collect();
+    std::fs::write(
+        tmp.path().join("bright.exr"),
+        cuticle_light::image_file::exr_bytes(32, 16, &bright).unwrap(),
+    )
+    .unwrap();
+    let fit = tmp.path().join("fit").display().to_string();
+    let exr = tmp.path().join("bright.exr").display().to_string();
+    let run = cuticle(&["env", "fit", "--env", &exr, "--lights", "4", "--out", &fit]);
+    if run.status.success() {
+        let lights = tmp.path().join("fit/lights.json").display().to_string();
+        let mut args = with(&["render", "--device", "cpu"], &B[..8]);
+        args.extend(["--lights".into(), lights, "--out".into(), out.clone()]);
+        assert_runs(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    } else {
+        // Refused by the fit itself, naming the light: never written for render to refuse.
+        assert_refused(
+            &["env", "fit", "--env", &exr, "--lights", "4", "--out", &fit],
+            "light",
+        );
+    }
+}
+
+/// #6: `compare A0 B --minus A B0` (swapped) wrote ratios of −2; negative pixels in A's
+/// image.exr were taken while a negative B was refused.
+#[test]
+fn issue57_compare_refuses_negative_radiance_on_either_side() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let full = small_render(dir, "full", &[]);
+    let direct = small_render(dir, "direct", &["--no-multiple"]);
+    let out = dir.join("out").display().to_string();
+    assert_refused(
+        &[
+            "compare", &direct, &full, "--minus", &full, &direct, "--out", &out,
+        ],
+        "are A0 and B0 swapped",
+    );
+    let negative = dir.join("negative");
+    std::fs::create_dir(&negative).unwrap();
+    for file in names(Path::new(&full)) {
+        std::fs::copy(Path::new(&full).join(&file), negative.join(&file)).unwrap();
+    }
+    let mut image = cuticle_light::image_file::read_rgb_exr(&negative.join("image.exr")).unwrap();
+    image.pixels[40] = glam::DVec3::new(0.5, -3.0, 0.5);
+    std::fs::write(
+        negative.join("image.exr"),
+        cuticle_light::image_file::exr_bytes(image.width, image.height, &image.pixels).unwrap(),
+    )
+    .unwrap();
+    let negative = negative.display().to_string();
+    for (a, b) in [(&negative, &full), (&full, &negative)] {
+        assert_refused(
+            &["compare", a, b, "--out", &out],
+            "pixel (column 8, row 1) is negative",
+        );
+    }
+    assert!(!dir.join("out").exists());
+    assert_runs(&["compare", &full, &direct, "--out", &out]);
+}
+
+/// #7: `sweep` added its set to a render's output and to a folder of notes.
+#[test]
+fn issue57_sweep_writes_only_into_a_sweeps_folder() {
+    let tmp = tempfile::tempdir().unwrap();
+    let render = small_render(tmp.path(), "render", &[]);
+    let notes = tmp.path().join("notes");
+    std::fs::create_dir(&notes).unwrap();
+    std::fs::write(notes.join("notes.txt"), "mine").unwrap();
+    let sweep = |out: &str| {
+        vec![
+            "sweep", "--grid", "small", "--rays", "100", "--limit", "1", "--out", out,
+        ]
+        .into_iter()
+        .map(String::from)
+        .collect::<Vec<_>>()
+    };
+    let before = names(Path::new(&render));
+    for (folder, holds) in [
+        (render.as_str(), ".exr"),
+        (notes.to_str().unwrap(), "notes.txt"),
+    ] {
+        let args = sweep(folder);
+        let err = assert_refused(
+            &args.iter().map(String::as_str).collect::<Vec<_>>(),
+            "is not a sweep's folder",
+        );
+        assert!(err.contains(holds), "{err}");
+    }
+    assert_eq!(names(Path::new(&render)), before);
+    assert_eq!(names(&notes), ["notes.txt"]);
+    // A sweep's own folder resumes.
+    let own = tmp.path().join("own").display().to_string();
+    for _ in 0..2 {
+        let args = sweep(&own);
+        assert_runs(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    }
+}
+
+/// #8: two sweeps into one folder at once both ran, and mixed ten configurations of each.
+/// One run per configuration: the second is refused; a shard that owns others runs beside.
+#[test]
+fn issue57_a_second_sweep_into_a_running_ones_folder_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("sweep");
+    let out_s = out.display().to_string();
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_cuticle"))
+        .args([
+            "sweep", "--grid", "small", "--rays", "50000000", "--limit", "2", "--shard", "1/2",
+            "--out", &out_s,
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while !out.join(".sweep.lock").exists() && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    // The locks are taken a moment after the file is made.
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    for shard in ["1/1", "1/2"] {
+        assert_refused(
+            &[
+                "sweep", "--grid", "small", "--rays", "1000", "--seed", "2", "--limit", "20",
+                "--shard", shard, "--out", &out_s,
+            ],
+            "another sweep is running",
+        );
+    }
+    // Shard 2 of 2 owns none of shard 1's configurations.
+    assert_runs(&[
+        "sweep", "--grid", "small", "--rays", "50000000", "--limit", "0", "--shard", "2/2",
+        "--out", &out_s,
+    ]);
+    assert!(
+        first.try_wait().unwrap().is_none(),
+        "the first sweep ended before the second was tried: the test proves nothing"
+    );
+    first.kill().unwrap();
+    first.wait().unwrap();
+    // Its locks went with it.
+    assert_runs(&[
+        "sweep", "--grid", "small", "--rays", "50000000", "--limit", "0", "--out", &out_s,
+    ]);
+}
+
+/// #9: the path tracer took a strand absorption sidecar, melanin, a lights file, and --mu-a
+/// with melanin, and rendered as without them.
+#[test]
+fn issue57_the_path_tracer_refuses_what_it_would_ignore() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let out = dir.join("out").display().to_string();
+    let path = with(&with(&["render"], &B), &["--method", "path", "--spp", "1"]);
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, "strand_absorption = \"absorption.json\"\n").unwrap();
+    let lights = dir.join("lights.json");
+    std::fs::write(
+        &lights,
+        r#"{"lights": [{"direction": [0, 1, 0], "bandwidth": 0.5, "coefficient": [1, 1, 1]}]}"#,
+    )
+    .unwrap();
+    let (scene, lights) = (scene.display().to_string(), lights.display().to_string());
+    let rows: Vec<(Vec<String>, &str)> = vec![
+        (
+            with(&path, &["--model", "deon2011", "--scene", &scene]),
+            "strand_absorption",
+        ),
+        (
+            with(&path, &["--eumelanin", "8"]),
+            "--eumelanin does not apply to --model marschner",
+        ),
+        (
+            with(&path, &["--beta", "0.1"]),
+            "--beta does not apply to --model marschner",
+        ),
+        (
+            with(&path, &["--model", "chiang2016", "--beta", "0.1"]),
+            "--beta does not apply to --model chiang2016",
+        ),
+        (
+            with(&path, &["--model", "deon2011", "--beta-n", "0.1"]),
+            "--beta-n does not apply",
+        ),
+        (
+            with(
+                &path,
+                &["--model", "deon2011", "--mu-a", "0.5", "--eumelanin", "8"],
+            ),
+            "both set the absorption",
+        ),
+        (
+            with(
+                &with(&["render"], &B[..8]),
+                &["--method", "path", "--lights", &lights],
+            ),
+            "--lights FILE is for --method srbf and brute",
+        ),
+        (
+            with(&with(&["render"], &B), &["--model", "deon2011"]),
+            "--model is for --method path",
+        ),
+        (
+            with(&with(&["render"], &B), &["--eumelanin", "8"]),
+            "--eumelanin is for --method path",
+        ),
+    ];
+    refuse_all(
+        dir,
+        &rows
+            .into_iter()
+            .map(|(mut a, n)| {
+                a.extend(["--out".into(), out.clone()]);
+                (a, n.to_string())
+            })
+            .collect::<Vec<_>>(),
+    );
+}
+
+/// #14: under `prlimit --as=4294967296` a 2,000,000-strand groom aborted in the allocator, and
+/// the refusal under CUTICLE_MEMORY_LIMIT advised `groom make` to lower a --width it lacks.
+#[test]
+fn issue57_memory_checks_read_the_address_space_limit_and_advise_per_command() {
+    use std::os::unix::process::CommandExt;
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out").display().to_string();
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_cuticle"));
+    command.args([
+        "groom",
+        "make",
+        "--preset",
+        "curly",
+        "--strands",
+        "2000000",
+        "--out",
+        &out,
+    ]);
+    // SAFETY: setrlimit is async-signal-safe; nothing else runs between fork and exec.
+    unsafe {
+        command.pre_exec(|| {
+            let limit = libc::rlimit {
+                rlim_cur: 4 << 30,
+                rlim_max: 4 << 30,
+            };
+            if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        });
+    }
+    let run = command.output().unwrap();
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(1), "{err}");
+    assert!(err.starts_with("error: this groom needs about"), "{err}");
+    assert!(
+        err.contains("lower --strands") && !err.contains("--width"),
+        "{err}"
+    );
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    let err = assert_refused(
+        &[
+            "render", "--method", "path", "--width", "16384", "--height", "16384", "--out", &out,
+        ],
+        "of memory",
+    );
+    assert!(
+        err.contains("--width/--height or --strands") && !err.contains("lights"),
+        "{err}"
+    );
+    assert!(!tmp.path().join("out").exists());
+}
+
+/// The arguable item of issue 57: a FIFO given as `--scene` blocked forever, and reads had no
+/// size cap. Every input file must be a regular file of a sane size.
+#[test]
+fn issue57_special_and_oversized_input_files_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let fifo = dir.join("fifo");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let fifo = fifo.display().to_string();
+    let sparse = dir.join("sparse.toml");
+    std::fs::File::create(&sparse)
+        .unwrap()
+        .set_len(20 << 30)
+        .unwrap();
+    let sparse = sparse.display().to_string();
+    let out = dir.join("out").display().to_string();
+    let render = with(&["render"], &B);
+    let rows: Vec<(Vec<String>, &str)> = vec![
+        (with(&render, &["--scene", &fifo]), "not a regular file"),
+        (
+            with(&render, &["--scene", "/dev/zero"]),
+            "not a regular file",
+        ),
+        (with(&render, &["--scene", &sparse]), "more than the"),
+        (with(&render, &["--env", &fifo]), "not a regular file"),
+        (with(&render, &["--env", &sparse]), "more than the"),
+        (with(&render, &["--groom", &fifo]), "not a regular file"),
+        (
+            with(&with(&["render"], &B[..8]), &["--lights", &fifo]),
+            "not a regular file",
+        ),
+        (
+            with(&["env", "fit", "--env", "/dev/zero"], &[]),
+            "not a regular file",
+        ),
+        (with(&["sweep", "--grid", &fifo], &[]), "not a regular file"),
+    ];
+    for (mut args, needle) in rows {
+        args.extend(["--out".into(), out.clone()]);
+        assert_refused(&args.iter().map(String::as_str).collect::<Vec<_>>(), needle);
+    }
+    assert_refused(&["groom", "info", &fifo], "not a regular file");
+    assert!(!dir.join("out").exists());
+}

@@ -35,7 +35,8 @@ pub struct FurnaceRule {
     pub resolution: usize,
 }
 
-const NODES_PER_PANEL: usize = 8;
+/// Gauss–Legendre points per panel (`cuticle lobes`' pixel means use the same).
+pub const NODES_PER_PANEL: usize = 8;
 /// φ panels at resolution 1.
 const PHI_PANELS: usize = 32;
 /// The widest θ panel, far from every lobe, at resolution 1.
@@ -82,7 +83,8 @@ fn integrate(
 }
 
 /// Panel edges in θ_o: fine near the cone −θ_i (and its shifted copies), growing by 1.5× away.
-fn theta_breaks(theta_i: f64, rule: FurnaceRule, resolution: usize) -> Vec<f64> {
+/// [`albedo`]'s own estimate integrates on these at `2 * rule.resolution`.
+pub fn theta_breaks(theta_i: f64, rule: FurnaceRule, resolution: usize) -> Vec<f64> {
     let center = -theta_i;
     let flat = rule.max_shift.abs() * 1.5 + 4.0 * rule.beta;
     let finest = (0.5 * 0.55 * rule.beta).max(flat / MAX_FINE_PANELS as f64) / resolution as f64;

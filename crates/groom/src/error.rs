@@ -76,6 +76,16 @@ pub enum HairFileError {
         value: f32,
     },
 
+    #[error(
+        "{array} value at index {index} is {value:e}, beyond ±{bound:e}, the largest a groom may hold"
+    )]
+    OutOfRange {
+        array: HairArray,
+        index: usize,
+        value: f32,
+        bound: f32,
+    },
+
     #[error("the header's default {field} is {value}, not a finite number")]
     NonFiniteDefault { field: &'static str, value: f32 },
 
@@ -121,6 +131,13 @@ pub enum GroomError {
 
     #[error("{array} value at index {index} is not finite")]
     NonFinite { array: &'static str, index: usize },
+
+    #[error("{array} value at index {index} is beyond ±{bound:e}, the largest a groom may hold")]
+    OutOfRange {
+        array: &'static str,
+        index: usize,
+        bound: f32,
+    },
 
     #[error("the groom has {points} points, more than the {limit} a groom indexes")]
     TooManyPoints { points: usize, limit: usize },

@@ -117,7 +117,7 @@ impl Groom {
         path: impl AsRef<Path>,
     ) -> Result<Self, StrandAbsorptionError> {
         let path = path.as_ref();
-        let len = std::fs::metadata(path)?.len();
+        let len = crate::hair_file::read::regular_file_len(path)?;
         if len > MAX_BYTES {
             return Err(StrandAbsorptionError::TooLarge(len));
         }

@@ -98,13 +98,16 @@ fn a_groom_reads_from_disk() {
 
 fn any_float() -> impl Strategy<Value = f32> {
     use proptest::num::f32::{NEGATIVE, NORMAL, POSITIVE, SUBNORMAL, ZERO};
-    (NORMAL | SUBNORMAL | ZERO | POSITIVE | NEGATIVE).prop_filter("finite", |v| v.is_finite())
+    (NORMAL | SUBNORMAL | ZERO | POSITIVE | NEGATIVE).prop_filter("within a groom's range", |v| {
+        v.is_finite() && v.abs() <= cuticle_groom::GroomParts::MAX_COORDINATE
+    })
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
-    /// Any finite values, including −0 and subnormals, come back bit for bit.
+    /// Any values a groom may hold (within ±`GroomParts::MAX_COORDINATE`), including −0 and
+    /// subnormals, come back bit for bit.
     #[test]
     fn arbitrary_values_round_trip_bit_for_bit(
         bits in 0u32..32,
@@ -135,4 +138,28 @@ proptest! {
         };
         prop_assert!(same_bits(back.points.as_deref().unwrap_or(&[]), file.points.as_deref().unwrap_or(&[])));
     }
+}
+
+/// A point or thickness beyond the range is refused on read, naming the array and the entry.
+#[test]
+fn coordinates_beyond_the_range_are_refused() {
+    for (bits, at, value) in [(0b11, 0usize, 1e20f32), (0b111, 0, -3e38)] {
+        let mut file = random_hair_file(ArrayFlags::from_bits(bits).unwrap(), 3);
+        let points = file.points.as_mut().unwrap();
+        points[at].y = value;
+        let err = HairFile::from_bytes(&file.to_bytes().unwrap())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with(&format!("points value at index {at} is")),
+            "{err}"
+        );
+        assert!(err.contains("the largest a groom may hold"), "{err}");
+    }
+    let mut file = random_hair_file(ArrayFlags::from_bits(0b111).unwrap(), 4);
+    file.thickness.as_mut().unwrap()[0] = 2e6;
+    let err = HairFile::from_bytes(&file.to_bytes().unwrap())
+        .unwrap_err()
+        .to_string();
+    assert!(err.starts_with("thickness value at index 0"), "{err}");
 }

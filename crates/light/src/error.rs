@@ -30,6 +30,17 @@ pub enum LightError {
         row: usize,
         value: f32,
     },
+    #[error(
+        "{path}: pixel (column {column}, row {row}) has radiance {value:e}, above the {max:e} a \
+         map may hold",
+        max = crate::srbf::MAX_RADIANCE
+    )]
+    TooBright {
+        path: PathBuf,
+        column: usize,
+        row: usize,
+        value: f32,
+    },
     #[error("cannot read {path}: {message}")]
     Image { path: PathBuf, message: String },
     #[error("cannot encode {0}")]

@@ -1,5 +1,6 @@
 //! OpenEXR reading through the `exr` crate: scanline or tiled, half or float, any compression the
-//! crate supports (ZIP included); of a mip- or rip-mapped file only the full-resolution level.
+//! crate decodes within bounds ([`BOUNDED_COMPRESSIONS`]: not DWAA/DWAB); of a mip- or
+//! rip-mapped file only the full-resolution level.
 
 use crate::LightError;
 use crate::load::RawImage;
@@ -10,6 +11,20 @@ use std::path::Path;
 
 /// The four magic bytes every OpenEXR file starts with.
 const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// The compressions whose decoders bound what they allocate by the header's (already bounded)
+/// size, whatever a chunk claims: tests/fuzz_exr.rs mutates files of each. DWAA and DWAB are not
+/// among them: the `exr` crate allocates the DC and AC counts a chunk states (issue 57 #1).
+const BOUNDED_COMPRESSIONS: [Compression; 8] = [
+    Compression::Uncompressed,
+    Compression::RLE,
+    Compression::ZIP1,
+    Compression::ZIP16,
+    Compression::PIZ,
+    Compression::PXR24,
+    Compression::B44,
+    Compression::B44A,
+];
 
 pub fn is_exr(bytes: &[u8]) -> bool {
     bytes.starts_with(&MAGIC)
@@ -27,6 +42,24 @@ pub fn read_exr(
         message: err.to_string(),
     };
     let meta = MetaData::read_from_buffered(Cursor::new(bytes), false).map_err(decode_error)?;
+    if let Some(refused) = meta
+        .headers
+        .iter()
+        .map(|h| h.compression)
+        .find(|c| !BOUNDED_COMPRESSIONS.contains(c))
+    {
+        return Err(LightError::Decode {
+            path: path.to_path_buf(),
+            message: format!(
+                "{} compression is not read (its decoder trusts counts in the file); \
+                 save the image with ZIP or PIZ",
+                refused
+                    .to_string()
+                    .trim_end_matches(" compression")
+                    .to_uppercase()
+            ),
+        });
+    }
     if let Some(too_big) = meta
         .headers
         .iter()

@@ -76,20 +76,35 @@ fn check_size(width: usize, height: usize, pixels: usize) -> Result<(), LightErr
 /// Most pixels an image read back may claim (16k × 8k, the largest map or render).
 const MAX_READ_PIXELS: usize = 1 << 27;
 
+/// The most bytes one allocation may take while an OpenEXR file is decoded: the RGB floats of
+/// [`MAX_READ_PIXELS`] pixels and the f64 copy of them, with room to spare. The fuzz test
+/// (tests/fuzz_exr.rs) holds the reader to it for every compression.
+pub const MAX_DECODE_BYTES: usize = MAX_READ_PIXELS * 3 * 8 + (1 << 20);
+
 /// Reads the R, G, B channels of an OpenEXR file's first layer (alpha ignored), refusing a
 /// header that claims more pixels than the file's bytes could hold, and NaN or infinite
 /// pixels (naming the first).
 pub fn read_rgb_exr(path: &Path) -> Result<LinearImage, LightError> {
+    let bytes = crate::file::read_regular(path, crate::file::MAX_IMAGE_FILE).map_err(|e| {
+        LightError::Image {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        }
+    })?;
+    rgb_exr_from_bytes(path, &bytes)
+}
+
+/// [`read_rgb_exr`] of a file already in memory (`path` names it in errors).
+pub fn rgb_exr_from_bytes(path: &Path, bytes: &[u8]) -> Result<LinearImage, LightError> {
     let refused = |message: String| LightError::Image {
         path: path.to_path_buf(),
         message,
     };
-    let bytes = std::fs::read(path).map_err(|e| refused(e.to_string()))?;
-    if !crate::exr_reader::is_exr(&bytes) {
+    if !crate::exr_reader::is_exr(bytes) {
         return Err(refused("not an OpenEXR file".into()));
     }
     let max = MAX_READ_PIXELS.min(crate::load::max_pixels_of(bytes.len()));
-    let raw = crate::exr_reader::read_exr(path, &bytes, max).map_err(|e| match e {
+    let raw = crate::exr_reader::read_exr(path, bytes, max).map_err(|e| match e {
         LightError::Decode { message, .. } => refused(message),
         other => other,
     })?;

@@ -39,6 +39,7 @@ mod color;
 mod env_map;
 mod error;
 mod exr_reader;
+pub mod file;
 mod fit;
 mod hdr;
 pub mod image_file;
@@ -59,7 +60,7 @@ pub use latlong::{direction_from_angles, direction_to_angles};
 pub use load::{load_env_map, load_or_default};
 pub use procedural_sky::ProceduralSky;
 pub use srbf::{
-    MAX_BANDWIDTH, MAX_LIGHTS, MIN_BANDWIDTH, SrbfLight, SrbfProduct, evaluate_lights,
-    relative_l2_error, validate_lights,
+    MAX_BANDWIDTH, MAX_COEFFICIENT, MAX_LIGHTS, MAX_RADIANCE, MIN_BANDWIDTH, SrbfLight,
+    SrbfProduct, evaluate_lights, relative_l2_error, validate_lights,
 };
 pub use tonemap::{ToneMap, comparison_image};

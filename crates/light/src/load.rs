@@ -25,9 +25,11 @@ const MAX_PIXELS_PER_BYTE: usize = 200;
 /// corrupt data, a shape that is not about 2:1, NaN or infinite pixels. Negative values are
 /// clamped to 0 and counted ([`EnvMap::clamped_negatives`]).
 pub fn load_env_map(path: &Path) -> Result<EnvMap, LightError> {
-    let bytes = std::fs::read(path).map_err(|source| LightError::Io {
-        path: path.to_path_buf(),
-        source,
+    let bytes = crate::file::read_regular(path, crate::file::MAX_IMAGE_FILE).map_err(|source| {
+        LightError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
     })?;
     let max_pixels = MAX_PIXELS.min(max_pixels_of(bytes.len()));
     let raw = if is_exr(&bytes) {
@@ -70,6 +72,18 @@ fn validated(path: &Path, raw: RawImage) -> Result<EnvMap, LightError> {
     if let Some(index) = rgb.iter().position(|v| !v.is_finite()) {
         let pixel = index / 3;
         return Err(LightError::NonFinite {
+            path: path.to_path_buf(),
+            column: pixel % width,
+            row: pixel / width,
+            value: rgb[index],
+        });
+    }
+    if let Some(index) = rgb
+        .iter()
+        .position(|&v| v > crate::srbf::MAX_RADIANCE as f32)
+    {
+        let pixel = index / 3;
+        return Err(LightError::TooBright {
             path: path.to_path_buf(),
             column: pixel % width,
             row: pixel / width,
@@ -120,6 +134,17 @@ mod tests {
                 other => panic!("expected NonFinite, got {other:?}"),
             }
         }
+    }
+
+    #[test]
+    fn pixels_brighter_than_a_light_may_be_are_refused() {
+        let mut image = raw(8, 4, 1.0);
+        image.rgb[3 * (8 + 2)] = 3e38;
+        match validated(Path::new("x.exr"), image) {
+            Err(LightError::TooBright { column, row, .. }) => assert_eq!((column, row), (2, 1)),
+            other => panic!("expected TooBright, got {other:?}"),
+        }
+        assert!(validated(Path::new("x.exr"), raw(8, 4, 1e20)).is_ok());
     }
 
     #[test]

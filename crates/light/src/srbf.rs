@@ -19,6 +19,10 @@ pub const MAX_BANDWIDTH: f64 = 4.0;
 /// The largest coefficient (radiance at the centre): far beyond any measured sky (the sun is
 /// about 1e9 in W m⁻² sr⁻¹), and small enough that shading sums stay finite in f32 images.
 pub const MAX_COEFFICIENT: f64 = 1e20;
+/// The brightest pixel a map may hold: the bound of a light's coefficient, so that what a fit
+/// of any readable map writes, a lights file reader reads (issue 57 #12: a map of 3e38 gave
+/// lights.json coefficients of 2e38 that `render --lights` refused).
+pub const MAX_RADIANCE: f64 = MAX_COEFFICIENT;
 
 /// One SRBF light: L_j G(ω; ω_j, λ_j) (Xu et al. 2011 eq. 1).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

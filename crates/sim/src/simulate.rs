@@ -51,9 +51,17 @@ impl SimResult {
         self.energy.iter().sum()
     }
 
-    /// Power absorbed inside the fiber: what neither left nor was lost at the surface.
+    /// Power absorbed inside the fiber: what neither left nor was lost at the surface, at
+    /// least 0. The difference of sums leaves a residue of about 1e-13 where nothing is
+    /// absorbed (μ_a = 0), negative as often as not (issue 57 #13): no fiber absorbs less than
+    /// nothing.
     pub fn absorbed(&self) -> DVec3 {
-        DVec3::ONE - self.albedo() - self.lost_shadowing - self.lost_backfacing - self.lost_cutoff
+        let rest = DVec3::ONE
+            - self.albedo()
+            - self.lost_shadowing
+            - self.lost_backfacing
+            - self.lost_cutoff;
+        rest.max(DVec3::ZERO)
     }
 
     /// Paths per second of wall time.
@@ -156,6 +164,39 @@ fn trace_chunk_baseline(fiber: &Fiber, params: &SimParams, c: u64, tally: &mut T
 mod tests {
     use super::*;
     use cuticle_fiber::LatLongGrid;
+
+    /// A clear fiber whose tallies add up to a hair over 1, as sums of f64 do.
+    #[test]
+    fn absorbed_is_never_negative() {
+        let params = SimParams {
+            mu_a: [0.0; 3],
+            ..SimParams::default()
+        };
+        let grid = params.grid;
+        let third = DVec3::splat(1.0 / 3.0 + 1e-16);
+        let result = SimResult {
+            params,
+            lobes: std::array::from_fn(|_| LatLongImage::zeros(grid)),
+            energy: [third, third, third, DVec3::ZERO, DVec3::ZERO],
+            lost_shadowing: DVec3::splat(1e-13),
+            lost_backfacing: DVec3::ZERO,
+            lost_cutoff: DVec3::ZERO,
+            seconds: 1.0,
+            rays: 1,
+        };
+        assert_eq!(result.absorbed(), DVec3::ZERO);
+        let absorbing = SimResult {
+            energy: [DVec3::splat(0.1); LOBES],
+            lost_shadowing: DVec3::ZERO,
+            ..result
+        };
+        assert!(
+            (absorbing.absorbed() - DVec3::splat(0.5))
+                .abs()
+                .max_element()
+                < 1e-12
+        );
+    }
 
     /// The AVX2 build of the path loop against the baseline one, chunk by chunk, on
     /// configurations that take every branch (tilted scales, rough, coloured and grey

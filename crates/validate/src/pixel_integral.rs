@@ -82,27 +82,76 @@ impl PixelRule {
     }
 }
 
-/// The five lobe images (R, TT, TRT, TRRT, rest) of `model` for light at `theta_i` (φ_i = 0),
-/// each pixel the mean of S over it; rows in parallel.
-pub fn integrate_lobes(
+/// The five lobe images of `model` for light at `theta_i`, each pixel the mean of S over it, in
+/// θ on the panels `breaks` (edges in θ_o, finest near the cones: the furnace's,
+/// `cuticle_fiber::furnace::theta_breaks`) cut at each row's edges, `nodes` Gauss–Legendre
+/// points per whole panel (a piece of a panel gets its share, at least two: rows far thinner
+/// than the panels there, at large widths, do not each take `nodes`), and `phi_nodes` points
+/// per column. On the furnace's own panels the images'
+/// energy is the furnace's albedo at any β, however much narrower than a row a lobe is (issue 57
+/// #15: `cuticle lobes` sampled pixel centres, and its images held 4.6× the TT energy at
+/// β = 0.003).
+pub fn integrate_lobes_on_breaks(
     model: &dyn FiberModel,
     theta_i: f64,
     grid: LatLongGrid,
-    rule: &PixelRule,
+    breaks: &[f64],
+    nodes: usize,
+    phi_nodes: usize,
+) -> [LatLongImage; 5] {
+    let phi_rule = GaussLegendre::cached(phi_nodes);
+    let rows: Vec<Vec<(f64, f64)>> = (0..grid.height)
+        .map(|k| {
+            let (top, bottom) = (grid.theta_top(k), grid.theta_top(k + 1));
+            let mut edges = vec![bottom, top];
+            edges.extend(breaks.iter().copied().filter(|b| *b > bottom && *b < top));
+            edges.sort_by(f64::total_cmp);
+            let scale = 0.5 * grid.d_phi() / grid.pixel_solid_angle(k);
+            edges
+                .windows(2)
+                .flat_map(|piece| {
+                    let share = (piece[1] - piece[0]) / panel_width(breaks, piece[0], piece[1]);
+                    let n = ((nodes as f64 * share).ceil() as usize).clamp(2, nodes.max(2));
+                    GaussLegendre::cached(n).panel_nodes(piece)
+                })
+                .map(|(theta, w)| (theta, w * theta.cos() * scale))
+                .collect()
+        })
+        .collect();
+    integrate_rows(model, theta_i, grid, &rows, phi_rule)
+}
+
+/// The width of the panel of `breaks` (sorted) that holds the piece [a, b]; the piece's own
+/// width outside them.
+fn panel_width(breaks: &[f64], a: f64, b: f64) -> f64 {
+    let mid = 0.5 * (a + b);
+    let upper = breaks.partition_point(|&x| x <= mid);
+    match (upper.checked_sub(1).map(|i| breaks[i]), breaks.get(upper)) {
+        (Some(lo), Some(&hi)) => hi - lo,
+        _ => b - a,
+    }
+}
+
+/// Each pixel's Σ over its row's θ nodes (weights already divided by the pixel's solid angle
+/// and holding the φ half-width) and `phi_rule`'s nodes across its column; rows in parallel.
+fn integrate_rows(
+    model: &dyn FiberModel,
+    theta_i: f64,
+    grid: LatLongGrid,
+    row_nodes: &[Vec<(f64, f64)>],
+    phi_rule: &GaussLegendre,
 ) -> [LatLongImage; 5] {
     let wi = FiberAngles::new(theta_i, 0.0);
-    let phi_rule = rule.phi_nodes();
     let half_dphi = 0.5 * grid.d_phi();
-    let rows: Vec<Vec<[DVec3; 5]>> = (0..grid.height)
-        .into_par_iter()
-        .map(|k| {
-            let thetas = rule.row_nodes(&grid, k, theta_i);
+    let rows: Vec<Vec<[DVec3; 5]>> = row_nodes
+        .par_iter()
+        .map(|thetas| {
             (0..grid.width)
                 .map(|j| {
                     let mut acc = [DVec3::ZERO; 5];
                     for (x, wp) in phi_rule.nodes.iter().zip(&phi_rule.weights) {
                         let phi = grid.phi_center(j) + half_dphi * x;
-                        for &(theta, wt) in &thetas {
+                        for &(theta, wt) in thetas {
                             let s = model.eval(wi, FiberAngles::new(theta, phi));
                             for (a, v) in acc.iter_mut().zip(s.0) {
                                 *a += wt * wp * v;
@@ -115,4 +164,18 @@ pub fn integrate_lobes(
         })
         .collect();
     cuticle_fiber::latlong::lobe_images(grid, &rows)
+}
+
+/// The five lobe images (R, TT, TRT, TRRT, rest) of `model` for light at `theta_i` (φ_i = 0),
+/// each pixel the mean of S over it; rows in parallel.
+pub fn integrate_lobes(
+    model: &dyn FiberModel,
+    theta_i: f64,
+    grid: LatLongGrid,
+    rule: &PixelRule,
+) -> [LatLongImage; 5] {
+    let rows: Vec<Vec<(f64, f64)>> = (0..grid.height)
+        .map(|k| rule.row_nodes(&grid, k, theta_i))
+        .collect();
+    integrate_rows(model, theta_i, grid, &rows, rule.phi_nodes())
 }

@@ -8,6 +8,7 @@
 
 use crate::error::ValidateError;
 use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::ranges::{ALPHA_DEG, BETA, ETA, MU_A, Range, THETA_I};
 use cuticle_fiber::{FiberParams, LatLongImage};
 use glam::DVec3;
 use serde::Serialize;
@@ -17,6 +18,9 @@ use std::path::{Path, PathBuf};
 
 /// The record a finished configuration leaves.
 pub const RECORD: &str = "sim.json";
+/// The largest `sim.json` read (a real one is under 2 kB). `path.is_file()` already keeps out
+/// pipes and devices.
+const MAX_RECORD_BYTES: u64 = 1 << 20;
 
 /// One simulated configuration.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -51,6 +55,13 @@ impl SimConfig {
         if !path.is_file() {
             return Err(ValidateError::NoRecord(dir.to_path_buf()));
         }
+        let len = fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        if len > MAX_RECORD_BYTES {
+            return Err(ValidateError::BadRecord {
+                path,
+                message: format!("is {len} bytes; a record is at most {MAX_RECORD_BYTES}"),
+            });
+        }
         let text = fs::read_to_string(&path).map_err(|source| ValidateError::Io {
             path: path.clone(),
             source,
@@ -61,11 +72,14 @@ impl SimConfig {
         };
         let record: Value = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
         let params = &record["params"];
-        let number = |key: &str| {
-            params[key]
+        // The ranges `sim` checks its parameters with (issue 57 #10: θ_i = 10 validated to
+        // energies of 0, θ_i = 1e308 to a report of NaN).
+        let number = |key: &str, range: Range| {
+            let v = params[key]
                 .as_f64()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(format!("\"params\" has no finite number \"{key}\"")))
+                .ok_or_else(|| bad(format!("\"params\" has no finite number \"{key}\"")))?;
+            range.check(v).map_err(|e| bad(format!("\"params\": {e}")))
         };
         let triple = |v: &Value, key: &str| -> Result<Vec<f64>, ValidateError> {
             let a = v
@@ -82,6 +96,8 @@ impl SimConfig {
         let mu_a: [f64; 3] = triple(&params["mu_a"], "\"params\".\"mu_a\"")?
             .try_into()
             .map_err(|_| bad("\"params\".\"mu_a\" is not [r, g, b]".into()))?;
+        MU_A.check_all(&mu_a)
+            .map_err(|e| bad(format!("\"params\": {e}")))?;
         let grid: Vec<usize> = triple(&params["grid"], "\"params\".\"grid\"")?
             .into_iter()
             .filter(|v| v.fract() == 0.0 && *v >= 1.0 && *v <= 1e5)
@@ -92,8 +108,10 @@ impl SimConfig {
             .map_err(|_| bad("\"params\".\"grid\" is not [width, height]".into()))?;
         let rays = record["rays"]
             .as_u64()
-            .filter(|&r| r > 0)
-            .ok_or_else(|| bad("\"rays\" is not a positive whole number".into()))?;
+            .ok_or_else(|| bad("\"rays\" is not a whole number".into()))?;
+        cuticle_sim::params::RAYS
+            .check(rays)
+            .map_err(|e| bad(e.to_string()))?;
         let mut energy = [0.0; 6];
         for (e, name) in energy.iter_mut().zip(FILES) {
             *e = record["energy"][name]
@@ -112,10 +130,10 @@ impl SimConfig {
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default(),
-            theta_i: number("theta_i")?,
-            alpha_deg: number("alpha_deg")?,
-            beta: number("beta")?,
-            eta: number("eta")?,
+            theta_i: number("theta_i", THETA_I)?,
+            alpha_deg: number("alpha_deg", ALPHA_DEG)?,
+            beta: number("beta", BETA)?,
+            eta: number("eta", ETA)?,
             mu_a,
             rays,
             grid,
@@ -124,9 +142,14 @@ impl SimConfig {
         })
     }
 
-    /// Whether `other` simulates the same fiber and light with as many paths: what a second
-    /// run for the noise floor must do ([`crate::noise`]); its seed must differ.
+    /// Whether `other` simulates the same fiber and light with as many paths, onto the same
+    /// grid: what a second run for the noise floor must do ([`crate::noise`]); its seed must
+    /// differ.
     pub fn same_setup(&self, other: &SimConfig) -> bool {
+        self.grid == other.grid && self.same_fiber_and_paths(other)
+    }
+
+    fn same_fiber_and_paths(&self, other: &SimConfig) -> bool {
         (
             self.theta_i,
             self.alpha_deg,

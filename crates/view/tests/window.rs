@@ -595,3 +595,47 @@ fn bad_input_shows_an_error_and_keeps_the_scene() {
         assert!(frame(&h).0 == before, "{what}: image changed");
     }
 }
+
+/// Issue 57 #4: in `--screenshot` mode a render that failed ended nothing: the error went to
+/// the status line of a window nobody watches, which waited for a frame forever (the CLI saw it
+/// with a groom at 3e38, and with `--device gpu` and opacity maps of 4096²). Here the CPU
+/// renderer fails on a method it does not draw (the CLI refuses that one before the window
+/// opens; the worker turns the renderer's panic into a failed frame). The run must end with the
+/// error and write no screenshot. No renderer is needed: nothing is drawn.
+#[test]
+fn a_failed_render_ends_a_screenshot_run_with_its_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let shot = dir.path().join("shot.png");
+    let outcome = Outcome::default();
+    let kept = outcome.clone();
+    let options = ViewOptions {
+        spec: SceneSpec {
+            method: cuticle_render::Method::Path,
+            ..spec()
+        },
+        out: dir.path().to_path_buf(),
+        device: Choice::Cpu,
+        screenshot: Some(shot.clone()),
+        ..ViewOptions::default()
+    };
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .with_accessibility_check(false)
+        .build_ui_state(
+            move |ui, app: &mut Option<ViewApp>| {
+                app.get_or_insert_with(|| ViewApp::new(ui.ctx(), options.clone(), kept.clone()))
+                    .show_ui(ui)
+            },
+            None,
+        );
+    let start = Instant::now();
+    while !outcome.is_set() && start.elapsed() < Duration::from_secs(60) {
+        h.step();
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let err = outcome
+        .result()
+        .expect_err("the run ends with the render's error");
+    assert!(err.to_string().contains("render failed"), "{err}");
+    assert!(!shot.exists());
+}

@@ -132,7 +132,18 @@ impl Render {
         let path = self
             .path(name)
             .with_context(|| format!("{}: its render.json lists no {name}", self.dir.display()))?;
-        read_image(&path)
+        let image = read_image(&path)?;
+        // Radiance is never negative: a render that says so is not one (issue 57 #6).
+        if let Some(k) = image.pixels.iter().position(|p| p.min_element() < 0.0) {
+            bail!(
+                "{}: pixel (column {}, row {}) is negative, {}; a render's radiance never is",
+                path.display(),
+                k % image.width,
+                k / image.width,
+                image.pixels[k]
+            );
+        }
+        Ok(image)
     }
 }
 
@@ -221,6 +232,15 @@ fn region(a: &Image, b: &Image, pixels: &[usize]) -> Result<RegionStats> {
     let n = pixels.len().max(1) as f64;
     let sum = |img: &Image| pixels.iter().map(|&k| img.pixels[k]).sum::<DVec3>() / n;
     let (mean_a, mean_b) = (sum(a), sum(b));
+    if let Some(c) = (0..3).find(|&c| mean_a[c] < 0.0) {
+        bail!(
+            "A's mean over the {} hair pixels is {} in channel {}: a negative radiance (with \
+             --minus, are A0 and B0 swapped?)",
+            pixels.len(),
+            mean_a[c],
+            ["R", "G", "B"][c]
+        );
+    }
     if let Some(c) = (0..3).find(|&c| mean_b[c] <= 0.0) {
         bail!(
             "B's mean over the {} hair pixels is {} in channel {}: the ratio A/B and the \

@@ -47,6 +47,9 @@ pub fn absorption(
     default: DVec3,
 ) -> Result<DVec3> {
     Ok(match (mu_a, eumelanin, pheomelanin) {
+        (Some(_), Some(_), _) | (Some(_), _, Some(_)) => anyhow::bail!(
+            "--mu-a and melanin (--eumelanin, --pheomelanin) both set the absorption; give one"
+        ),
         (Some(m), _, _) => DVec3::from_array(m),
         (None, None, None) => default,
         (None, eu, pheo) => {

@@ -6,7 +6,7 @@ use cuticle_groom::HairFile;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::summary::{HairFileSummary, Stats};
 use cuticle_render::scene::STRANDS;
-use cuticle_render::scene::memory::MemoryNeed;
+use cuticle_render::scene::memory::{Advice, MemoryNeed};
 use serde_json::json;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -87,7 +87,13 @@ fn make(args: &MakeArgs) -> Result<()> {
     MemoryNeed {
         parts: vec![("the groom", points.saturating_mul(MAKE_BYTES_PER_POINT))],
     }
-    .check(crate::memory::available())?;
+    .check_for(
+        crate::memory::available(),
+        Advice {
+            what: "groom",
+            lower: "lower --strands",
+        },
+    )?;
     let mut out = OutDir::create(&args.out, "groom")?;
     let start = Instant::now();
     let groom = generate(&params)?;

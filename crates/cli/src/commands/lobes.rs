@@ -1,5 +1,11 @@
 //! `cuticle lobes`: a fiber model's lobes as lat-long images (docs/conventions.md §4), and with
 //! `--samples` the histogram of its importance samples beside them, like d'Eon et al. 2014 Figure 7.
+//!
+//! Each pixel (and so each row of `azimuthal.csv`) is the mean of S over the pixel, integrated
+//! on the white furnace's θ panels (`cuticle_fiber::furnace`) cut at the rows' edges, as the
+//! simulator's histograms and `validate` are: a lobe narrower than a row is neither missed nor
+//! overstated, and the images' energy (`energy_of_images` in lobes.json) is the furnace's
+//! (`energy`) within [`IMAGE_ENERGY_TOLERANCE`] at every β the command takes.
 
 use crate::commands::fiber_args::FiberArgs;
 use crate::latlong_io::{LOBE_FILES, png_bytes_with_white, white_point, write_images};
@@ -66,8 +72,13 @@ pub fn run(args: Args) -> Result<()> {
     let wi = FiberAngles::new(args.theta_i, 0.0);
     let mut out = OutDir::create(&args.out, "lobes")?;
 
+    let rule = cuticle_fiber::furnace::FurnaceRule {
+        beta: args.fiber.beta,
+        max_shift: 6.0 * args.fiber.alpha_deg.abs().to_radians(),
+        resolution: 1,
+    };
     let start = Instant::now();
-    let lobes = evaluate(model.as_ref(), wi, grid);
+    let lobes = evaluate(model.as_ref(), args.theta_i, grid, rule);
     let eval_seconds = start.elapsed().as_secs_f64();
     let total = sum(&lobes);
     let mut named: Vec<(&str, &LatLongImage)> =
@@ -75,15 +86,13 @@ pub fn run(args: Args) -> Result<()> {
     named.push(("total", &total));
     write_images(&mut out, &named, true)?;
 
-    let rule = cuticle_fiber::furnace::FurnaceRule {
-        beta: args.fiber.beta,
-        max_shift: 6.0 * args.fiber.alpha_deg.abs().to_radians(),
-        resolution: 1,
-    };
     let energy = cuticle_fiber::furnace::albedo(model.as_ref(), args.theta_i, rule);
     let mut record = json!({
         "params": args.fiber.json(Some(args.theta_i))?,
         "energy": energy_json(|l| channel_mean(energy.per_lobe[l]), channel_mean(energy.albedo)),
+        "energy_error_estimate": channel_mean(energy.error_estimate),
+        "energy_of_images_bound": IMAGE_ENERGY_TOLERANCE * channel_mean(energy.albedo)
+            + IMAGE_ENERGY_ESTIMATES * channel_mean(energy.error_estimate),
         "energy_of_images": energy_json(|l| channel_mean(lobes[l.index()].energy()), channel_mean(total.energy())),
         "width": grid.width, "height": grid.height,
         "seconds": { "evaluate": eval_seconds },
@@ -124,26 +133,37 @@ fn energy_json(per_lobe: impl Fn(Lobe) -> f64, total: f64) -> serde_json::Value 
     v.into()
 }
 
-/// Each lobe of S at every pixel centre, rows in parallel.
-pub fn evaluate(model: &dyn FiberModel, wi: FiberAngles, grid: LatLongGrid) -> [LatLongImage; 5] {
-    let progress = bar(grid.height as u64, "evaluate");
-    let rows: Vec<Vec<[DVec3; 5]>> = (0..grid.height)
-        .into_par_iter()
-        .map(|k| {
-            let theta = grid.theta_center(k);
-            let row = (0..grid.width)
-                .map(|j| {
-                    model
-                        .eval(wi, FiberAngles::new(theta, grid.phi_center(j)))
-                        .0
-                })
-                .collect();
-            progress.inc(1);
-            row
-        })
-        .collect();
-    progress.finish_and_clear();
-    cuticle_fiber::latlong::lobe_images(grid, &rows)
+/// How far each lobe's image energy may sit from the furnace's: this share of the total
+/// (channel means; the φ rules differ, three points a column here, uniform panels there) plus
+/// [`IMAGE_ENERGY_ESTIMATES`] times the furnace's error estimate (at the smallest β with a
+/// tilt the furnace's finest panels are capped wider than a lobe, and its fine-against-coarse
+/// estimate is all either integral is known to). lobes.json states the bound as
+/// `energy_of_images_bound`; tests/fiber_commands.rs holds every model to it from the smallest
+/// β to the largest.
+pub const IMAGE_ENERGY_TOLERANCE: f64 = 2e-3;
+/// See [`IMAGE_ENERGY_TOLERANCE`].
+pub const IMAGE_ENERGY_ESTIMATES: f64 = 4.0;
+
+/// Points in φ per column: columns are π/200 wide at the default width, and S varies slowly in
+/// φ on that scale.
+const PHI_NODES: usize = 3;
+
+/// Each lobe's pixel means: on `rule`'s θ panels at the resolution the furnace reports.
+pub fn evaluate(
+    model: &dyn FiberModel,
+    theta_i: f64,
+    grid: LatLongGrid,
+    rule: cuticle_fiber::furnace::FurnaceRule,
+) -> [LatLongImage; 5] {
+    let breaks = cuticle_fiber::furnace::theta_breaks(theta_i, rule, 2 * rule.resolution.max(1));
+    cuticle_validate::pixel_integral::integrate_lobes_on_breaks(
+        model,
+        theta_i,
+        grid,
+        &breaks,
+        cuticle_fiber::furnace::NODES_PER_PANEL,
+        PHI_NODES,
+    )
 }
 
 fn sum(images: &[LatLongImage; 5]) -> LatLongImage {

@@ -8,6 +8,7 @@ pub mod lobes;
 pub mod render;
 pub mod sim;
 pub mod sweep;
+pub mod sweep_folder;
 pub mod trace;
 pub mod validate;
 pub mod view;

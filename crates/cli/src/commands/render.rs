@@ -12,6 +12,7 @@ use cuticle_fiber::ranges::CountRange;
 use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::{BenchReport, Edit};
+use cuticle_render::scene::memory::Advice;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -93,9 +94,21 @@ pub struct SceneArgs {
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
     if spec.method == Method::Path {
+        if lights.is_some() {
+            // Issue 57 #9: the file was read, then ignored.
+            anyhow::bail!(
+                "--lights FILE is for --method srbf and brute; the path tracer samples the \
+                 environment map itself (give --env)"
+            );
+        }
         device::choose(args.device, spec.method)?;
         return crate::commands::trace::run(&args.path, spec, &args.out);
     }
+    args.path.check_unused(if spec.method == Method::Brute {
+        "brute"
+    } else {
+        "srbf"
+    })?;
     let scene = load_within_memory(spec, lights)?;
     Renderer::accepts(&scene)?;
     // The device is probed only once the scene is known to be good: bad input fails fast.
@@ -148,7 +161,7 @@ pub fn run(args: Args) -> Result<()> {
             )
         }
     };
-    check_finite(&image)?;
+    check_finite(&image, "an image")?;
     let tone = ToneMap::for_map(&scene.env);
     out.write("image.png", &image.png_bytes(tone)?)?;
     out.write("image.exr", &image.exr_bytes()?)?;
@@ -277,22 +290,26 @@ pub fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Re
     } else {
         lights.as_ref().map(Vec::len)
     };
-    spec.memory_need(light_count, threads).check(available)?;
+    let advice = if path { Advice::PATH } else { Advice::RENDER };
+    spec.memory_need(light_count, threads)
+        .check_for(available, advice)?;
     let scene = if path {
         Scene::load_without_lights(spec)?
     } else {
         Scene::load(spec, lights)?
     };
-    scene.memory_need(threads).check(available)?;
+    scene.memory_need(threads).check_for(available, advice)?;
     Ok(scene)
 }
 
-/// Refuses to write an image holding NaN or infinite pixels (a fault of the renderer: every
-/// input that could cause one is refused before rendering).
-fn check_finite(image: &Image) -> Result<()> {
-    match image.pixels.iter().position(|p| !p.is_finite()) {
+/// Refuses to write an image holding a pixel that is NaN or infinite as the f32 the files
+/// store (a finite f64 above 3.4e38 is +∞ there: issue 57 #5, an environment of 3e38 through a
+/// clear fiber). `what` names the image in the message.
+pub(crate) fn check_finite(image: &Image, what: &str) -> Result<()> {
+    match image.pixels.iter().position(|p| !p.as_vec3().is_finite()) {
         Some(k) => anyhow::bail!(
-            "the renderer made a non-finite pixel ({}, {}) = {}; nothing was written",
+            "the renderer made {what} pixel ({}, {}) = {} that is not a finite 32-bit float \
+             (the light is too bright?); nothing was written",
             k % image.width,
             k / image.width,
             image.pixels[k]
@@ -463,8 +480,8 @@ fn read_lights(path: &Path) -> Result<Vec<SrbfLight>> {
             cuticle_light::MAX_LIGHTS
         );
     }
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let text = cuticle_light::file::read_regular_text(path, MAX_LIGHTS_FILE)
+        .with_context(|| format!("cannot read {}", path.display()))?;
     let value: Value =
         serde_json::from_str(&text).with_context(|| format!("{} is not JSON", path.display()))?;
     let lights = value

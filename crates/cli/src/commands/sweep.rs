@@ -9,8 +9,11 @@
 //! whose configurations were made with other `--rays`, `--seed` or `--png`.
 //! `--shard K/N` runs the configurations whose index i (in the grid's order) has
 //! i mod N = K − 1, so the N jobs of an array share one output folder without overlap.
+//! The folder must be a sweep's, and each configuration is run by one process at a time
+//! ([`super::sweep_folder`]): a second run that shares any is refused before it starts.
 
 use crate::commands::sim::write_result;
+use crate::commands::sweep_folder::{ConfigLocks, check_is_sweep};
 use crate::output::write_json_atomic;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
@@ -61,7 +64,7 @@ fn configs(grid_arg: &str) -> Result<Vec<SweepConfig>> {
                     "grid file {file} is {size} bytes; a grid file holds at most {MAX_GRID_FILE}"
                 );
             }
-            let text = std::fs::read_to_string(file)
+            let text = cuticle_light::file::read_regular_text(Path::new(file), MAX_GRID_FILE)
                 .with_context(|| format!("cannot read grid file {file}"))?;
             Ok(grid::from_json(&text)?)
         }
@@ -80,6 +83,8 @@ pub fn run(args: Args) -> Result<()> {
     )?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create output folder {}", args.out.display()))?;
+    check_is_sweep(&args.out)?;
+    let _locks = ConfigLocks::take(&args.out, sweep.configs.iter().map(|(_, c)| c))?;
     sweep.check_settings()?;
     check_png(&sweep, args.png)?;
     let progress = bar(sweep.configs.len() as u64, "sweep");

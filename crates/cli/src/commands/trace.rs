@@ -8,6 +8,7 @@
 //! Chiang 2016) for every strand.
 
 use crate::commands::fiber_args::absorption;
+use crate::commands::render::check_finite;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
@@ -45,27 +46,91 @@ pub struct PathArgs {
     /// Fiber model of the path tracer; marschner takes the scene's hair parameters.
     #[arg(long, value_enum, default_value_t = TraceModel::Marschner)]
     pub model: TraceModel,
-    /// Longitudinal roughness β of d'Eon 2011 / non-separable (Beckmann), in (0, 1].
-    #[arg(long, default_value_t = 0.04, allow_negative_numbers = true)]
-    pub beta: f64,
-    /// Scale tilt α, degrees (d'Eon 2011, non-separable, Chiang 2016).
-    #[arg(long, default_value_t = -2.0, allow_negative_numbers = true)]
-    pub alpha_deg: f64,
+    /// Longitudinal roughness β of d'Eon 2011 / non-separable (Beckmann), in (0, 1]
+    /// [default: 0.04].
+    #[arg(long, allow_negative_numbers = true)]
+    pub beta: Option<f64>,
+    /// Scale tilt α, degrees (d'Eon 2011, non-separable, Chiang 2016) [default: -2].
+    #[arg(long, allow_negative_numbers = true)]
+    pub alpha_deg: Option<f64>,
     /// Eumelanin concentration, instead of --mu-a (models other than marschner).
     #[arg(long, allow_negative_numbers = true)]
     pub eumelanin: Option<f64>,
     /// Pheomelanin concentration, instead of --mu-a.
     #[arg(long, allow_negative_numbers = true)]
     pub pheomelanin: Option<f64>,
-    /// Chiang 2016's longitudinal roughness β_m, in (0, 1].
-    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
-    pub beta_m: f64,
-    /// Chiang 2016's azimuthal roughness β_n, in (0, 1].
-    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
-    pub beta_n: f64,
+    /// Chiang 2016's longitudinal roughness β_m, in (0, 1] [default: 0.3].
+    #[arg(long, allow_negative_numbers = true)]
+    pub beta_m: Option<f64>,
+    /// Chiang 2016's azimuthal roughness β_n, in (0, 1] [default: 0.3].
+    #[arg(long, allow_negative_numbers = true)]
+    pub beta_n: Option<f64>,
 }
 
 impl PathArgs {
+    fn beta(&self) -> f64 {
+        self.beta.unwrap_or(0.04)
+    }
+
+    fn alpha_deg(&self) -> f64 {
+        self.alpha_deg.unwrap_or(-2.0)
+    }
+
+    fn beta_m(&self) -> f64 {
+        self.beta_m.unwrap_or(0.3)
+    }
+
+    fn beta_n(&self) -> f64 {
+        self.beta_n.unwrap_or(0.3)
+    }
+
+    /// The fiber flags given, by name: what the model chosen must use, or the run is refused
+    /// (issue 57 #9: `--eumelanin 8` with `--model marschner` once changed nothing).
+    fn given(&self) -> Vec<(&'static str, bool)> {
+        vec![
+            ("--beta", self.beta.is_some()),
+            ("--alpha-deg", self.alpha_deg.is_some()),
+            ("--eumelanin", self.eumelanin.is_some()),
+            ("--pheomelanin", self.pheomelanin.is_some()),
+            ("--beta-m", self.beta_m.is_some()),
+            ("--beta-n", self.beta_n.is_some()),
+        ]
+    }
+
+    /// The first fiber flag given that `model` does not take.
+    fn unused_flag(&self) -> Option<&'static str> {
+        let takes: &[&str] = match self.model {
+            TraceModel::Marschner => &[],
+            TraceModel::Deon2011 | TraceModel::Nonseparable => {
+                &["--beta", "--alpha-deg", "--eumelanin", "--pheomelanin"]
+            }
+            TraceModel::Chiang2016 => &[
+                "--alpha-deg",
+                "--eumelanin",
+                "--pheomelanin",
+                "--beta-m",
+                "--beta-n",
+            ],
+        };
+        self.given()
+            .into_iter()
+            .find(|(flag, given)| *given && !takes.contains(flag))
+            .map(|(flag, _)| flag)
+    }
+
+    /// Refuses the path tracer's flags on a render by another method, which would ignore them.
+    pub fn check_unused(&self, method: &str) -> Result<()> {
+        let flag = if self.model != TraceModel::Marschner {
+            Some("--model")
+        } else {
+            self.given().into_iter().find(|(_, g)| *g).map(|(f, _)| f)
+        };
+        match flag {
+            Some(flag) => bail!("{flag} is for --method path; --method {method} does not use it"),
+            None => Ok(()),
+        }
+    }
+
     fn options(&self) -> Result<TraceOptions> {
         SPP.check(self.spp.into())?;
         MAX_DEPTH.check(self.max_depth.into())?;
@@ -92,7 +157,7 @@ impl PathArgs {
         let params = FiberParams {
             eta: hair.eta,
             beta,
-            alpha: self.alpha_deg.to_radians(),
+            alpha: self.alpha_deg().to_radians(),
             mu_a,
         };
         params.validate()?;
@@ -101,14 +166,34 @@ impl PathArgs {
 
     /// The model's flags checked against the scene's hair before anything is loaded.
     fn check(&self, spec: &SceneSpec) -> Result<()> {
+        let model = format!("{:?}", self.model).to_lowercase();
+        if let Some(flag) = self.unused_flag() {
+            bail!(
+                "{flag} does not apply to --model {model}{}",
+                if self.model == TraceModel::Marschner {
+                    " (it takes the scene's hair parameters: --mu-a, --eta, ...)"
+                } else {
+                    ""
+                }
+            );
+        }
+        if self.model != TraceModel::Marschner
+            && let Some(sidecar) = &spec.strand_absorption
+        {
+            // Only Marschner 2003 takes a strand's own absorption (StrandModels::marschner).
+            bail!(
+                "the scene's strand_absorption {sidecar} applies to --model marschner only; \
+                 --model {model} gives every strand one absorption"
+            );
+        }
         match self.model {
             TraceModel::Marschner => Ok(()),
             TraceModel::Chiang2016 => {
-                self.fiber(spec, BETA.named("beta_m").check(self.beta_m)?)?;
-                BETA.named("beta_n").check(self.beta_n)?;
+                self.fiber(spec, BETA.named("beta_m").check(self.beta_m())?)?;
+                BETA.named("beta_n").check(self.beta_n())?;
                 Ok(())
             }
-            _ => self.fiber(spec, self.beta).map(|_| ()),
+            _ => self.fiber(spec, self.beta()).map(|_| ()),
         }
     }
 
@@ -120,14 +205,14 @@ impl PathArgs {
                 StrandModels::marschner(scene).context("Marschner 2003 parameters")
             }
             TraceModel::Deon2011 => one(Box::new(
-                DEon2011::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
+                DEon2011::new(self.fiber(&scene.spec, self.beta())?)?.tabulated(),
             )),
             TraceModel::Nonseparable => one(Box::new(
-                NonSeparable::new(self.fiber(&scene.spec, self.beta)?)?.tabulated(),
+                NonSeparable::new(self.fiber(&scene.spec, self.beta())?)?.tabulated(),
             )),
             TraceModel::Chiang2016 => one(Box::new(Chiang2016::new(
-                self.fiber(&scene.spec, BETA.named("beta_m").check(self.beta_m)?)?,
-                self.beta_n,
+                self.fiber(&scene.spec, BETA.named("beta_m").check(self.beta_m())?)?,
+                self.beta_n(),
             )?)),
         }
     }
@@ -136,12 +221,12 @@ impl PathArgs {
         let fiber = match self.model {
             TraceModel::Marschner => Value::Null,
             TraceModel::Chiang2016 => {
-                let p = self.fiber(&scene.spec, self.beta_m)?;
-                json!({"beta_m": self.beta_m, "beta_n": self.beta_n, "alpha_deg": self.alpha_deg, "eta": p.eta, "mu_a": p.mu_a.to_array()})
+                let p = self.fiber(&scene.spec, self.beta_m())?;
+                json!({"beta_m": self.beta_m(), "beta_n": self.beta_n(), "alpha_deg": self.alpha_deg(), "eta": p.eta, "mu_a": p.mu_a.to_array()})
             }
             _ => {
-                let p = self.fiber(&scene.spec, self.beta)?;
-                json!({"beta": self.beta, "alpha_deg": self.alpha_deg, "eta": p.eta, "mu_a": p.mu_a.to_array()})
+                let p = self.fiber(&scene.spec, self.beta())?;
+                json!({"beta": self.beta(), "alpha_deg": self.alpha_deg(), "eta": p.eta, "mu_a": p.mu_a.to_array()})
             }
         };
         Ok(json!({
@@ -205,13 +290,13 @@ pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
     let report = |done: usize, _total: usize| progress.set_position(done as u64);
     let traced = cuticle_trace::render(&scene, &models, &options, &report);
     progress.finish_and_clear();
-    if traced.image.pixels.iter().any(|p| !p.is_finite()) {
-        bail!("the path tracer produced a non-finite pixel; nothing written");
-    }
+    check_finite(&traced.image, "an image")?;
+    let error = standard_error_image(&traced);
+    check_finite(&error, "a standard error")?;
     let tone = ToneMap::for_map(&scene.env);
     out_dir.write("image.png", &traced.image.png_bytes(tone)?)?;
     out_dir.write("image.exr", &traced.image.exr_bytes()?)?;
-    out_dir.write("standard_error.exr", &standard_error_exr(&traced)?)?;
+    out_dir.write("standard_error.exr", &error.exr_bytes()?)?;
     out_dir.write("coverage.exr", &coverage_exr(&traced)?)?;
     out_dir.finish(record(&scene, params, &traced)?)?;
     let s = &traced.stats;
@@ -261,14 +346,13 @@ fn record(scene: &Scene, path: Value, t: &TraceImage) -> Result<Value> {
     }))
 }
 
-/// The per-pixel standard error of the mean, linear RGB EXR.
-fn standard_error_exr(t: &TraceImage) -> Result<Vec<u8>> {
-    let error = Image {
+/// The per-pixel standard error of the mean, linear RGB.
+fn standard_error_image(t: &TraceImage) -> Image {
+    Image {
         width: t.image.width,
         height: t.image.height,
         pixels: t.standard_error.clone(),
-    };
-    Ok(error.exr_bytes()?)
+    }
 }
 
 /// Each pixel's coverage (the fraction of its camera rays that met hair) in all three channels,

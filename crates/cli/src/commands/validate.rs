@@ -213,6 +213,17 @@ fn noise_twins(configs: &[SimConfig], dir: &std::path::Path) -> Result<Vec<SimCo
                     c.name
                 );
             };
+            if c.grid != twin.grid {
+                bail!(
+                    "--noise: {} is on a {}x{} grid, {} on {}x{}: the second run needs the same grid",
+                    twin.dir.display(),
+                    twin.grid[0],
+                    twin.grid[1],
+                    c.dir.display(),
+                    c.grid[0],
+                    c.grid[1]
+                );
+            }
             if !c.same_setup(twin) {
                 bail!(
                     "--noise: {} differs from {} in its parameters or number of paths",
@@ -241,7 +252,7 @@ fn read_lobes(config: &SimConfig) -> Result<[LatLongImage; 5]> {
     let [r, tt, trt, trrt, rest, total] = FILES.map(read);
     let images = [r?, tt?, trt?, trrt?, rest?, total?];
     let csv_path = config.dir.join("azimuthal.csv");
-    let csv = std::fs::read_to_string(&csv_path)
+    let csv = cuticle_light::file::read_regular_text(&csv_path, cuticle_light::file::MAX_TEXT_FILE)
         .with_context(|| format!("cannot read {}", csv_path.display()))?;
     config.check_set(&images, &csv)?;
     let [r, tt, trt, trrt, rest, _] = images;

@@ -24,7 +24,14 @@ impl GroomParts {
     /// Most points a groom may hold: offsets are u32.
     pub const MAX_POINTS: usize = u32::MAX as usize;
 
-    /// Checks offsets, array lengths and finiteness.
+    /// The largest |coordinate| of a position, and the largest thickness, in a groom's units
+    /// (real grooms span tens of them): beyond it the path tracer's BVH and the renderers' f32
+    /// arithmetic (lengths, bounds, squared distances) overflow — at 1e20 the BVH builder
+    /// panicked (issue 57 #2), at 3e38 a strand's length was ∞. Every groom passes this check,
+    /// and `.hair` files are held to it when read.
+    pub const MAX_COORDINATE: f32 = 1e6;
+
+    /// Checks offsets, array lengths, finiteness and [`Self::MAX_COORDINATE`].
     pub fn validate(&self) -> Result<(), GroomError> {
         self.check_offsets()?;
         let points = self.positions.len();
@@ -37,6 +44,11 @@ impl GroomParts {
         }
         check_finite("position", self.positions.iter().map(|p| p.is_finite()))?;
         check_finite("thickness", self.thickness.iter().map(|t| t.is_finite()))?;
+        check_bounded(
+            "position",
+            self.positions.iter().map(|p| p.abs().max_element()),
+        )?;
+        check_bounded("thickness", self.thickness.iter().map(|t| t.abs()))?;
         check_finite(
             "colour",
             self.colors.iter().flatten().map(|c| c.is_finite()),
@@ -91,6 +103,18 @@ fn check_finite(array: &'static str, finite: impl Iterator<Item = bool>) -> Resu
     }
 }
 
+fn check_bounded(array: &'static str, sizes: impl Iterator<Item = f32>) -> Result<(), GroomError> {
+    let mut sizes = sizes;
+    match sizes.position(|s| s > GroomParts::MAX_COORDINATE) {
+        Some(index) => Err(GroomError::OutOfRange {
+            array,
+            index,
+            bound: GroomParts::MAX_COORDINATE,
+        }),
+        None => Ok(()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -136,5 +160,15 @@ mod tests {
             index: 3,
         };
         assert_eq!(parts.validate(), Err(expected));
+        let mut parts = two_strands();
+        parts.positions[4].x = -1e20;
+        assert!(matches!(
+            parts.validate(),
+            Err(GroomError::OutOfRange {
+                array: "position",
+                index: 4,
+                ..
+            })
+        ));
     }
 }

@@ -125,6 +125,29 @@ pub fn check_defaults_finite(header: &Header) -> Result<(), HairFileError> {
     }
 }
 
+/// Checks every value of a per-point array lies within ±[`GroomParts::MAX_COORDINATE`] (points
+/// and thickness: what a groom built from the file must hold); `width` floats make one entry.
+pub fn check_bounded(
+    array: HairArray,
+    values: impl IntoIterator<Item = f32>,
+    width: usize,
+) -> Result<(), HairFileError> {
+    let bound = crate::GroomParts::MAX_COORDINATE;
+    match values
+        .into_iter()
+        .enumerate()
+        .find(|(_, v)| v.abs() > bound)
+    {
+        Some((at, value)) => Err(HairFileError::OutOfRange {
+            array,
+            index: at / width,
+            value,
+            bound,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Checks every value of a per-point array is finite; `width` floats make one entry.
 pub fn check_finite(
     array: HairArray,

@@ -12,7 +12,7 @@
 
 mod header;
 mod layout;
-mod read;
+pub(crate) mod read;
 mod write;
 
 pub use header::{ArrayFlags, HEADER_LEN, HairDefaults, HairInfo, Header, INFO_LEN, MAGIC};

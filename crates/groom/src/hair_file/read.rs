@@ -2,7 +2,9 @@
 
 use super::HairFile;
 use super::header::{HEADER_LEN, Header};
-use super::layout::{Layout, check_defaults_finite, check_finite, check_segment_sum};
+use super::layout::{
+    Layout, check_bounded, check_defaults_finite, check_finite, check_segment_sum,
+};
 use crate::error::{HairArray, HairFileError};
 use glam::Vec3;
 use std::io::Read;
@@ -18,8 +20,8 @@ impl HairFile {
 
     /// Reads a file from disk. Its size is checked against the header before the rest is read.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, HairFileError> {
+        let len = regular_file_len(path.as_ref())?;
         let mut file = std::fs::File::open(path)?;
-        let len = file.metadata()?.len();
         let mut head = [0; HEADER_LEN];
         if len < HEADER_LEN as u64 {
             return Err(HairFileError::HeaderTruncated { len });
@@ -33,6 +35,19 @@ impl HairFile {
         layout.check_len(bytes.len() as u64)?;
         decode_arrays(header, &layout, &bytes)
     }
+}
+
+/// The length of `path` if it is a regular file. Checked before it is opened: opening a FIFO
+/// for reading blocks until a writer comes (issue 57), and a device has no length.
+pub(crate) fn regular_file_len(path: &Path) -> std::io::Result<u64> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file (a folder, pipe or device)",
+        ));
+    }
+    Ok(meta.len())
 }
 
 /// Decodes and checks the header of a file of `file_len` bytes that starts with `bytes`.
@@ -64,6 +79,16 @@ fn decode_arrays(header: Header, layout: &Layout, bytes: &[u8]) -> Result<HairFi
     check_floats(HairArray::Thickness, &thickness)?;
     check_floats(HairArray::Transparency, &transparency)?;
     check_vec3s(HairArray::Colors, &colors)?;
+    if let Some(points) = &points {
+        check_bounded(
+            HairArray::Points,
+            points.iter().flat_map(|p| p.to_array()),
+            3,
+        )?;
+    }
+    if let Some(thickness) = &thickness {
+        check_bounded(HairArray::Thickness, thickness.iter().copied(), 1)?;
+    }
     Ok(HairFile {
         strand_count: header.strand_count,
         point_count: header.point_count,

@@ -165,6 +165,8 @@ pub fn fit_srbf_with_progress(
     let outcome = refine_and_revive(&mut adaptive, params, options, kappa_range, progress);
     let target = adaptive.target();
     let lights = outcome.params.to_sorted_lights();
+    // What a fit writes, `validate_lights` (every lights file's reader) accepts.
+    crate::srbf::validate_lights(&lights)?;
     let relative_l2 = relative_l2_error(map, &lights);
     progress(FitProgress::Done);
     Ok(FitReport {

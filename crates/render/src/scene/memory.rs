@@ -48,15 +48,39 @@ pub struct MemoryNeed {
 /// A render that needs more memory than the machine has.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error(
-    "this render needs about {need} of memory, {largest} the most, and {available} is \
-     available: lower --width/--height/--supersampling, --strands or the number of lights",
+    "this {what} needs about {need} of memory, {largest} the most, and {available} is \
+     available: {advice}",
     need = Bytes(self.need.total()),
     largest = self.need.largest(),
-    available = Bytes(*available)
+    available = Bytes(*available),
+    what = self.advice.what,
+    advice = self.advice.lower
 )]
 pub struct MemoryError {
     pub need: MemoryNeed,
     pub available: u64,
+    pub advice: Advice,
+}
+
+/// What a refusal calls the work, and which of the command's own flags make it smaller
+/// (issue 57 #14: `groom make` was told to lower a --width it does not have).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Advice {
+    pub what: &'static str,
+    pub lower: &'static str,
+}
+
+impl Advice {
+    /// `render --method srbf|brute`, `bench render` and the window.
+    pub const RENDER: Advice = Advice {
+        what: "render",
+        lower: "lower --width/--height/--supersampling, --strands or the number of lights",
+    };
+    /// `render --method path`: no lights, no supersampling.
+    pub const PATH: Advice = Advice {
+        what: "render",
+        lower: "lower --width/--height or --strands",
+    };
 }
 
 /// Bytes in the unit a person reads (`6.4 GB`).
@@ -90,12 +114,18 @@ impl MemoryNeed {
 
     /// Refuses the render when it needs more than `available` bytes.
     pub fn check(self, available: u64) -> Result<(), MemoryError> {
+        self.check_for(available, Advice::RENDER)
+    }
+
+    /// Refuses the work when it needs more than `available` bytes, with `advice`.
+    pub fn check_for(self, available: u64, advice: Advice) -> Result<(), MemoryError> {
         if self.total() <= available {
             Ok(())
         } else {
             Err(MemoryError {
                 need: self,
                 available,
+                advice,
             })
         }
     }

@@ -16,8 +16,8 @@ use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
 use cuticle_light::{
-    EnvMap, FitCache, FitOptions, FitSource, MAX_LIGHTS, SrbfLight, fit_srbf_cached,
-    load_or_default,
+    EnvMap, FitCache, FitOptions, FitSource, MAX_LIGHTS, MAX_RADIANCE, SrbfLight,
+    fit_srbf_cached, load_or_default,
 };
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Deserializer, Serialize};
@@ -262,10 +262,11 @@ pub fn maybe_three<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, 
 impl SceneSpec {
     /// Reads a TOML scene file; missing keys keep their defaults.
     pub fn from_toml_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-            path: path.into(),
-            source,
-        })?;
+        let text = cuticle_light::file::read_regular_text(path, cuticle_light::file::MAX_TEXT_FILE)
+            .map_err(|source| SceneError::Read {
+                path: path.into(),
+                source,
+            })?;
         toml::from_str(&text).map_err(|e| SceneError::Toml {
             path: path.into(),
             at: e
@@ -453,7 +454,8 @@ pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
     };
     let bad = || {
         SceneError::Invalid(format!(
-            "environment {spec}: constant takes one radiance or R,G,B, each finite and >= 0"
+            "environment {spec}: constant takes one radiance or R,G,B, each finite and in \
+             [0, {MAX_RADIANCE:e}]"
         ))
     };
     let parsed: Vec<f32> = values
@@ -465,7 +467,7 @@ pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
         [r, g, b] => Vec3::new(*r, *g, *b),
         _ => return Err(bad()),
     };
-    if !(rgb.is_finite() && rgb.min_element() >= 0.0) {
+    if !(rgb.is_finite() && rgb.min_element() >= 0.0 && rgb.max_element() <= MAX_RADIANCE as f32) {
         return Err(bad());
     }
     Ok(EnvMap::new(16, 8, vec![rgb; 16 * 8]))

@@ -43,7 +43,8 @@ impl Outcome {
         }
     }
 
-    fn is_set(&self) -> bool {
+    /// Whether the run has ended (a screenshot written, or an error).
+    pub fn is_set(&self) -> bool {
         self.0.lock().map_or(true, |o| o.is_some())
     }
 
@@ -283,8 +284,14 @@ impl ViewApp {
             .map(|j| (j.what.clone(), j.progress()))
     }
 
+    /// Shows `e` in the window; a `--screenshot` run, which nobody watches, ends with it
+    /// instead (issue 57 #4: a render that failed left it waiting for a frame forever).
     fn error(&mut self, e: impl Into<String>) {
         let e = e.into();
+        if self.options.screenshot.is_some() {
+            self.outcome.set(Err(e.clone()));
+            self.ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
         if self.errors.last() != Some(&e) {
             self.errors.push(e);
         }
@@ -300,13 +307,7 @@ impl ViewApp {
                     self.look = Some(*look);
                 }
                 Ok(_) => {}
-                Err(e) => {
-                    self.error(e.clone());
-                    if self.options.screenshot.is_some() {
-                        self.outcome.set(Err(e));
-                        self.ctx.send_viewport_cmd(egui::ViewportCommand::Close);
-                    }
-                }
+                Err(e) => self.error(e),
             }
         }
         if let Some(r) = self.groom_job.as_ref().and_then(Job::poll) {
