@@ -18,8 +18,8 @@
 mod inputs;
 
 use criterion::{BatchSize, Criterion, Throughput};
-use cuticle_fiber::azimuthal::AzimuthalScattering;
-use cuticle_fiber::table::AzimuthalTable;
+use cuticle_fiber::models::deon2011::azimuthal::AzimuthalScattering;
+use cuticle_fiber::models::deon2011::table::AzimuthalTable;
 use cuticle_fiber::{Chiang2016, DEon2011, FiberAngles, FiberModel, Marschner2003, NonSeparable};
 use inputs::{cases, params};
 use std::hint::black_box;

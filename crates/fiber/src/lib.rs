@@ -14,46 +14,41 @@
 //! assert!(sample.pdf > 0.0);
 //! ```
 
-pub mod absorption;
-pub mod attenuation;
-pub mod azimuthal;
-pub mod beckmann;
-pub mod bravais;
-pub mod chiang2016;
-pub mod cubic;
-pub mod deon2011;
-pub mod frame;
-pub mod fresnel;
 pub mod furnace;
-pub mod latlong;
+pub mod geometry;
 pub mod lobe;
-pub mod longitudinal;
-pub mod marschner2003;
+pub mod lobes;
+pub mod math;
 pub mod model;
-pub mod nonseparable;
-pub mod nusselt;
+pub mod models;
+pub mod optics;
 pub mod params;
 pub mod ranges;
-pub mod rough_deflection;
-pub mod rough_interface;
-pub mod rough_trt;
-pub mod sine_lobe;
-pub mod special;
-pub mod table;
 #[cfg(test)]
 pub(crate) mod testing;
-pub mod tilted_attenuation;
-pub mod tilted_deflection;
-pub mod tilted_mirror;
-pub mod vmf;
 
-pub use chiang2016::Chiang2016;
-pub use deon2011::DEon2011;
-pub use frame::{FiberAngles, FiberFrame, wrap_pi};
-pub use latlong::{LatLongGrid, LatLongImage};
+pub use geometry::frame::{FiberAngles, FiberFrame, wrap_pi};
+pub use geometry::latlong::{LatLongGrid, LatLongImage};
 pub use lobe::{Lobe, LobeValues};
-pub use marschner2003::Marschner2003;
 pub use model::{FiberModel, FiberSample};
-pub use nonseparable::NonSeparable;
+pub use models::chiang2016::Chiang2016;
+pub use models::deon2011::DEon2011;
+pub use models::marschner2003::Marschner2003;
+pub use models::nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
 pub use ranges::{Range, RangeError};
+
+// The module paths before the fiber crate moved into rooms, for the crates whose owners move
+// them to the new ones (render, gpu, the command line).
+#[doc(hidden)]
+pub use geometry::{bravais, frame, latlong};
+#[doc(hidden)]
+pub use lobes::azimuthal;
+#[doc(hidden)]
+pub use math as special;
+#[doc(hidden)]
+pub use math::vmf;
+#[doc(hidden)]
+pub use models::{marschner2003, nonseparable};
+#[doc(hidden)]
+pub use optics::{absorption, fresnel};

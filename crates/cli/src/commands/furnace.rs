@@ -9,8 +9,10 @@ use anyhow::{Result, bail};
 use cuticle_fiber::NonSeparable;
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
 use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::models::nonseparable::scales::attenuation::{
+    Surface, TiltedAttenuation, energy_budget,
+};
 use cuticle_fiber::ranges;
-use cuticle_fiber::tilted_attenuation::{Surface, TiltedAttenuation, energy_budget};
 use rayon::prelude::*;
 use serde_json::json;
 use std::path::PathBuf;
