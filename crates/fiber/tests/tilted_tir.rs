@@ -453,6 +453,7 @@ fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
     use cuticle_fiber::math::erfc;
     use cuticle_fiber::models::deon2011::azimuthal::{AzimuthalScattering, Weighting};
     use cuticle_fiber::models::nonseparable::NonSeparable;
+    use cuticle_fiber::models::nonseparable::cuticle::WithScales;
     use cuticle_fiber::params::FiberParams;
     use std::f64::consts::PI;
     const BINS: usize = 128;

@@ -20,6 +20,7 @@ mod common;
 use common::{ETA, model, model_images, simulated};
 use cuticle_fiber::LatLongGrid;
 use cuticle_fiber::models::deon2011::azimuthal::{AzimuthalScattering, Weighting};
+use cuticle_fiber::models::nonseparable::cuticle::WithScales;
 use cuticle_validate::moments::column_moments;
 use glam::DVec3;
 

@@ -11,14 +11,8 @@ use crate::geometry::bravais::{azimuthal_deflection, eta_prime};
 use crate::lobe::{LobeValues, channel_mean};
 use crate::lobes::azimuthal::wrapped_gaussian;
 use crate::math::GaussLegendre;
-use crate::models::nonseparable::rough::deflection::RoughTtTable;
-use crate::models::nonseparable::scales::attenuation::{
-    Surface, tilted_attenuation, tilted_reflectance,
-};
-use crate::models::nonseparable::scales::deflection::{ReadAt, deflection_shift};
-use crate::models::nonseparable::scales::mirror::{MirrorOffset, tilted_mirror_offsets};
+use crate::optics::attenuation::attenuation;
 use crate::optics::fresnel::fresnel_dielectric;
-use crate::optics::rough_interface::RoughInterface;
 use glam::DVec3;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -36,25 +30,54 @@ pub enum Weighting {
     Selection,
 }
 
+/// What a fiber's cuticle changes in N_p beyond d'Eon et al. 2011's smooth, untilted cylinder:
+/// A(p, h), R's mirror, the shift of Φ(p, h) and a lobe's spread taken per offset. The
+/// non-separable model's tilted and rough scales implement it
+/// (`models/nonseparable/cuticle.rs`); d'Eon 2011 has none, and this file knows nothing of them.
+pub trait Cuticle: std::fmt::Debug + Send + Sync + std::any::Any {
+    /// A(p, h) for all lobes at inclination θ_i, absorbing `mu_a` per unit radius.
+    fn attenuation(&self, theta_i: f64, h: f64, mu_a: DVec3) -> LobeValues;
+    /// A(0, h) alone: the Fresnel factor at the cuticle's micro-normal.
+    fn reflectance(&self, theta_i: f64, h: f64) -> f64;
+    /// Whether A(p, h) is d'Eon et al. 2011's closed form all the same (flat, smooth scales).
+    fn is_flat_and_smooth(&self) -> bool;
+    /// Whether the scales tilt: R then leaves by the offsets of [`Cuticle::r_offsets`] and Φ
+    /// moves by [`Cuticle::deflection_shift`].
+    fn tilted(&self) -> bool;
+    /// The offsets whose reflection leaves at φ, with |dh/dφ| (asked only where
+    /// [`Cuticle::tilted`]).
+    fn r_offsets(&self, theta_i: f64, phi: f64) -> [Option<ROffset>; 3];
+    /// What the cuticle adds to Bravais' Φ(p, h).
+    fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64;
+    /// Whether lobe p leaves by the cuticle's own exit per offset: its spread is then
+    /// [`Cuticle::exit_sigma`] and its Φ is read at θ_d = −θ_i whatever θ_o.
+    fn owns_exit(&self, p: usize) -> bool;
+    /// Lobe p's azimuthal standard deviation at (θ_i, h) where [`Cuticle::owns_exit`].
+    fn exit_sigma(&self, p: usize, theta_i: f64, h: f64) -> f64;
+    /// The largest of [`Cuticle::exit_sigma`] over every (θ_i, h).
+    fn exit_sigma_max(&self, p: usize) -> f64;
+    /// The cuticle itself, for the model that made it to read back.
+    fn as_any(&self) -> &dyn std::any::Any;
+}
+
+/// An offset h whose reflection leaves at the azimuth asked for, and |dh/dφ| there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ROffset {
+    pub h: f64,
+    pub dh_dphi: f64,
+}
+
 /// The azimuthal part shared by d'Eon 2011 and the non-separable model.
 #[derive(Clone, Debug)]
 pub struct AzimuthalScattering {
     pub eta: f64,
     pub mu_a: DVec3,
     /// Azimuthal variances v_{p,N} for p = 1, 2, 3 (index 0 unused: R has no azimuthal blur
-    /// here; the tilted non-separable model spreads it, `nonseparable::rough_mirror`).
+    /// here; the tilted non-separable model spreads it in its own N_R).
     pub v_n: [f64; 4],
-    /// The scale tilt α (radians) A(p, h) is taken at: 0 for d'Eon et al. 2011's smooth fiber,
-    /// else through the tilted scales of [`crate::models::nonseparable::scales::attenuation`].
-    pub scale_tilt: f64,
-    /// The micro-normal means of the Fresnel factors A(p, h) is taken with, where the surface
-    /// counts as rough ([`AzimuthalScattering::with_rough_surface`]); `None` for d'Eon et al.
-    /// 2011's smooth Fresnel factor.
-    pub rough: Option<Arc<RoughInterface>>,
-    /// TT's azimuth offset by offset through the rough surface
-    /// ([`AzimuthalScattering::with_rough_deflection`]); `None` for d'Eon et al. 2014's smooth
-    /// Φ(1, h) and single variance.
-    pub rough_tt: Option<Arc<RoughTtTable>>,
+    /// What the fiber's cuticle changes in N_p; `None` for d'Eon et al. 2011's smooth,
+    /// untilted cylinder.
+    cuticle: Option<Arc<dyn Cuticle>>,
 }
 
 impl AzimuthalScattering {
@@ -65,16 +88,19 @@ impl AzimuthalScattering {
             eta,
             mu_a,
             v_n: [0.0, 0.5 * b2, 2.0 * b2, 2.0 * b2],
-            scale_tilt: 0.0,
-            rough: None,
-            rough_tt: None,
+            cuticle: None,
         }
     }
 
-    /// The same terms with A(p, h) taken through scales tilted by `alpha` (radians).
-    pub fn with_scale_tilt(mut self, alpha: f64) -> Self {
-        self.scale_tilt = alpha;
+    /// The same terms through `cuticle`.
+    pub fn with_cuticle(mut self, cuticle: Arc<dyn Cuticle>) -> Self {
+        self.cuticle = Some(cuticle);
         self
+    }
+
+    /// The cuticle N_p is taken through, if not d'Eon et al. 2011's smooth one.
+    pub fn cuticle(&self) -> Option<&dyn Cuticle> {
+        self.cuticle.as_deref()
     }
 
     /// The same terms with lobe p's azimuthal variance v_{p,N} set to `variance`.
@@ -83,61 +109,51 @@ impl AzimuthalScattering {
         self
     }
 
-    /// The same terms with A(p, h) taken with the micro-normal means of the Fresnel factors of
-    /// a surface of Beckmann roughness `beta` ([`crate::optics::rough_interface`]), shared per (β, η).
-    pub fn with_rough_surface(mut self, beta: f64) -> Self {
-        self.rough = Some(RoughInterface::shared(beta, self.eta));
-        self
-    }
-
-    /// TT's Φ(1, h) and azimuthal spread taken per offset through the rough surface of
-    /// roughness `beta` and the scale tilt set so far ([`crate::models::nonseparable::rough::deflection`]): call
-    /// after [`AzimuthalScattering::with_scale_tilt`].
-    pub fn with_rough_deflection(mut self, beta: f64) -> Self {
-        self.rough_tt = Some(RoughTtTable::shared(self.eta, self.scale_tilt, beta));
-        self
-    }
-
-    /// Lobe p's azimuthal standard deviation about Φ(p, h): TT's per offset where it is taken
-    /// through the rough surface, else √v_{p,N}.
+    /// Lobe p's azimuthal standard deviation about Φ(p, h): the cuticle's per offset where it
+    /// owns lobe p's exit ([`Cuticle::owns_exit`]), else √v_{p,N}.
     #[inline]
     pub fn azimuthal_sigma(&self, p: usize, theta_i: f64, h: f64) -> f64 {
-        match (&self.rough_tt, p) {
-            (Some(table), 1) => table.at(theta_i, h).sigma,
+        match &self.cuticle {
+            Some(c) if c.owns_exit(p) => c.exit_sigma(p, theta_i, h),
             _ => self.v_n[p].sqrt(),
         }
     }
 
     /// The largest of lobe p's azimuthal standard deviations over every (θ_i, h).
     pub fn azimuthal_sigma_max(&self, p: usize) -> f64 {
-        match (&self.rough_tt, p) {
-            (Some(table), 1) => table.sigma_max(),
+        match &self.cuticle {
+            Some(c) if c.owns_exit(p) => c.exit_sigma_max(p),
             _ => self.v_n[p].sqrt(),
         }
     }
 
-    /// The surface A(p, h) meets.
-    pub fn surface(&self) -> Surface<'_> {
-        match &self.rough {
-            Some(rough) => Surface::rough(rough, self.scale_tilt),
-            None => Surface::smooth(self.eta, self.scale_tilt),
-        }
+    /// Whether A(p, h) is d'Eon et al. 2011's closed form.
+    pub fn is_flat_and_smooth(&self) -> bool {
+        self.cuticle.as_ref().is_none_or(|c| c.is_flat_and_smooth())
+    }
+
+    /// Whether the cuticle's scales tilt (R then leaves by their mirror, and Φ moves).
+    pub fn tilted(&self) -> bool {
+        self.cuticle.as_ref().is_some_and(|c| c.tilted())
     }
 
     /// A(p, h) for all lobes at inclination θ_i.
     pub fn attenuation(&self, theta_i: f64, h: f64) -> LobeValues {
-        // Flat and smooth, this is d'Eon 2011's closed form (`attenuation`).
-        tilted_attenuation(theta_i, h, self.surface(), self.mu_a).lobes
+        match &self.cuticle {
+            Some(c) => c.attenuation(theta_i, h, self.mu_a),
+            None => attenuation(theta_i, h, self.eta, self.mu_a),
+        }
     }
 
     /// A(0, h) alone: the Fresnel factor (its micro-normal mean when rough), at the tilted
     /// micro-normal when there is a tilt.
     pub(crate) fn reflectance(&self, theta_i: f64, h: f64) -> f64 {
-        let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
-        if self.scale_tilt == 0.0 && self.rough.is_none() {
-            fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta)
-        } else {
-            tilted_reflectance(theta_i, h, self.surface())
+        match &self.cuticle {
+            Some(c) => c.reflectance(theta_i, h),
+            None => {
+                let cos_gamma = (1.0 - h * h).max(0.0).sqrt();
+                fresnel_dielectric(theta_i.cos() * cos_gamma, self.eta)
+            }
         }
     }
 
@@ -166,8 +182,8 @@ impl AzimuthalScattering {
     /// R without azimuthal roughness (d'Eon et al. 2014 §2.3): the single root h = −sin(φ/2) of
     /// Φ(0, h) = φ, so N_R = ¼ cos(φ/2) A(0, h).
     fn eval_r(&self, theta_i: f64, phi: f64, weighting: Weighting) -> DVec3 {
-        if self.scale_tilt != 0.0 {
-            return self.eval_r_tilted(theta_i, phi, weighting);
+        if let Some(c) = self.cuticle.as_ref().filter(|c| c.tilted()) {
+            return self.eval_r_at_offsets(theta_i, &c.r_offsets(theta_i, phi), weighting);
         }
         let phi = crate::geometry::frame::wrap_pi(phi);
         let h = -(0.5 * phi).sin();
@@ -179,26 +195,20 @@ impl AzimuthalScattering {
         }
     }
 
-    /// R through tilted scales: the offset whose exact mirror leaves at φ (or at φ ± 2π, where
-    /// grazing mirrors run past the back of the fiber), N_R = ½ |dh/dφ| A(0, h)
-    /// ([`crate::models::nonseparable::scales::mirror`]; ¼ cos(φ/2) A(0, h) untilted).
-    fn eval_r_tilted(&self, theta_i: f64, phi: f64, weighting: Weighting) -> DVec3 {
-        let mirrors = tilted_mirror_offsets(theta_i, self.scale_tilt, phi);
-        self.eval_r_at_mirrors(theta_i, &mirrors, weighting)
-    }
-
-    /// N_R through tilted scales at the offsets [`tilted_mirror_offsets`] found for φ (a
-    /// caller that needs them for R's cone as well solves them once).
-    pub(crate) fn eval_r_at_mirrors(
+    /// N_R through tilted scales: the offsets whose exact mirror leaves at φ (or at φ ± 2π,
+    /// where grazing mirrors run past the back of the fiber), N_R = ½ |dh/dφ| A(0, h)
+    /// (¼ cos(φ/2) A(0, h) untilted). A caller that needs the offsets for R's cone as well
+    /// solves them once.
+    pub(crate) fn eval_r_at_offsets(
         &self,
         theta_i: f64,
-        mirrors: &[Option<MirrorOffset>; 3],
+        offsets: &[Option<ROffset>; 3],
         weighting: Weighting,
     ) -> DVec3 {
-        mirrors
+        offsets
             .iter()
             .flatten()
-            .map(|&MirrorOffset { h, dh_dphi, .. }| {
+            .map(|&ROffset { h, dh_dphi }| {
                 let jac = 0.5 * dh_dphi;
                 match weighting {
                     Weighting::Attenuation => DVec3::splat(jac * self.reflectance(theta_i, h)),
@@ -269,7 +279,7 @@ impl AzimuthalScattering {
         let mut reach = 0.5 * width * slope + 8.0 * self.azimuthal_sigma_max(p);
         let shift = |g: f64| self.deflection_shift(p, theta_i, g.sin());
         let centre = shift(mid);
-        if self.scale_tilt != 0.0 || self.rough_tt.is_some() {
+        if self.cuticle.is_some() {
             let spread = [mid - 0.5 * width, mid + 0.5 * width]
                 .map(|g| (shift(g) - centre).abs())
                 .into_iter()
@@ -289,11 +299,11 @@ impl AzimuthalScattering {
     }
 
     /// The η′ at which lobe p's Bravais Φ(p, h) is read, given d'Eon et al. 2011's η′(θ_d)
-    /// `eta_p`: that, except for TT taken through the rough surface
-    /// ([`Self::with_rough_deflection`]), whose Φ is read at θ_d = −θ_i whatever θ_o. Its table
-    /// holds each offset's exit azimuth itself, relative to that Φ, and TT's spread in θ with
-    /// its covariance with φ belongs to M_TT (departure 21): so N_TT is the same at every θ_d,
-    /// and ∫ M_TT N_TT integrates to A(1, h)'s energy whatever shape M_TT has.
+    /// `eta_p`: that, except for a lobe whose exit the cuticle owns ([`Cuticle::owns_exit`]),
+    /// whose Φ is read at θ_d = −θ_i whatever θ_o: the cuticle holds each offset's exit azimuth
+    /// itself, relative to that Φ, and the lobe's spread in θ with its covariance with φ
+    /// belongs to its M_p, so N_p is the same at every θ_d and ∫ M_p N_p integrates to
+    /// A(p, h)'s energy whatever shape M_p has.
     #[inline]
     pub fn lobe_eta_prime(&self, p: usize, theta_i: f64, eta_p: f64) -> f64 {
         match self.deflection_reads_theta_d(p) {
@@ -303,34 +313,18 @@ impl AzimuthalScattering {
     }
 
     /// Whether lobe p's Φ(p, h) moves with the θ_d it is read at ([`Self::lobe_eta_prime`]):
-    /// d'Eon et al. 2011's, but not TT's through the rough surface.
+    /// d'Eon et al. 2011's, but not a lobe whose exit the cuticle owns.
     #[inline]
     pub fn deflection_reads_theta_d(&self, p: usize) -> bool {
-        !(p == 1 && self.rough_tt.is_some())
+        !self.cuticle.as_ref().is_some_and(|c| c.owns_exit(p))
     }
 
-    /// What the scale tilt adds to TT's and TRT's Φ(p, h) ([`deflection_shift`]); 0 untilted
-    /// and for the other lobes. TT's is the rough surface's ([`crate::models::nonseparable::rough::deflection`])
-    /// where [`AzimuthalScattering::with_rough_deflection`] set it, at any tilt. R's tilted
-    /// form solves its exact mirror instead. TRRT keeps
-    /// Bravais' Φ: its two internal reflections off the rough surface turn it more than the
-    /// tilt does, and shifting it made the validation worse in 34 of its configurations and
-    /// better in 11 (docs/validation.md, departure 15).
+    /// What the cuticle adds to Bravais' Φ(p, h) ([`Cuticle::deflection_shift`]); 0 for
+    /// d'Eon et al. 2011's smooth one.
     pub fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
-        if let (Some(table), 1) = (&self.rough_tt, p) {
-            return table.at(theta_i, h).shift;
-        }
-        match p {
-            1 => deflection_shift(1, theta_i, self.scale_tilt, self.eta, h, ReadAt::OwnExit),
-            2 => deflection_shift(
-                2,
-                theta_i,
-                self.scale_tilt,
-                self.eta,
-                h,
-                ReadAt::CentralExit,
-            ),
-            _ => 0.0,
+        match &self.cuticle {
+            Some(c) => c.deflection_shift(p, theta_i, h),
+            None => 0.0,
         }
     }
 

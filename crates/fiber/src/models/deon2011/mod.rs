@@ -197,7 +197,7 @@ impl DEon2011 {
     #[inline]
     fn fast_table(&self) -> Option<&AzimuthalTable> {
         let table = self.table.as_deref()?;
-        (self.azimuthal.scale_tilt == 0.0).then_some(table)
+        (!self.azimuthal.tilted()).then_some(table)
     }
 
     /// What the tabulated path needs of θ_i alone: its sine and cosine, the prepared

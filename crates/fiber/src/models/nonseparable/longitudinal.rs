@@ -189,7 +189,7 @@ impl NonSeparable {
     /// ([`SkewedSineLobe::matched`]; departure 22). The tilted model always has the columns;
     /// without them (a model built otherwise) the lobe is the cut one.
     pub(super) fn tt_moments(&self, theta_i: f64, phi: f64) -> SkewedSine {
-        let Some(table) = &self.azimuthal().rough_tt else {
+        let Some(table) = self.rough_tt() else {
             let FiberParams {
                 eta, beta, alpha, ..
             } = self.params;

@@ -27,6 +27,7 @@
 //! `tt_width_is_the_first_order_spread_of_the_exit_angle`).
 
 pub mod cones;
+pub mod cuticle;
 mod longitudinal;
 pub mod rough;
 pub mod scales;
@@ -40,16 +41,18 @@ use crate::lobes::longitudinal::ConeLobe;
 use crate::math::{asin_fast, sin_cos_quadrant};
 use crate::model::weighted_sample;
 use crate::model::{FiberModel, FiberSample, select_and_remap};
-use crate::models::deon2011::azimuthal::{AzimuthalScattering, Weighting};
+use crate::models::deon2011::azimuthal::{AzimuthalScattering, ROffset, Weighting};
 use crate::models::deon2011::{DEon2011, azimuthal_offset, sample_phi};
-use crate::models::nonseparable::scales::attenuation::{TiltedAttenuation, energy_budget};
+use crate::models::nonseparable::scales::attenuation::{Surface, TiltedAttenuation, energy_budget};
 use crate::models::nonseparable::scales::mirror::{MirrorOffset, tilted_mirror};
 use crate::params::{FiberParams, ParamError};
 pub use cones::{
     CutLobe, cone_r, cone_trt, cone_tt, cone_tt_tilted, first_order_tt, trt_exit, tt_exit,
     tt_lobe_rough, tt_offset, variance_r, variance_trt, variance_tt,
 };
+use cuticle::TiltedCuticle;
 use glam::DVec3;
+use rough::deflection::RoughTtTable;
 use rough::mirror::RoughMirror;
 use std::sync::{Arc, OnceLock};
 use tables::mirrors::MirrorTable;
@@ -100,6 +103,8 @@ pub struct NonSeparable {
     params: FiberParams,
     scales: Scales,
     deon: DEon2011,
+    /// The tilted model's scales, which `deon`'s N_p is taken through; `None` in the paper's.
+    cuticle: Option<Arc<TiltedCuticle>>,
     iterations: u32,
     /// TT's offset for each azimuth, tabulated on first use.
     tt_offsets: OnceLock<TtOffsets>,
@@ -129,12 +134,12 @@ impl NonSeparable {
 
     pub fn with_scales(params: FiberParams, scales: Scales) -> Result<Self, ParamError> {
         let az = AzimuthalScattering::new(params.eta, params.beta, params.mu_a);
-        let az = match scales {
-            Scales::Paper => az,
-            Scales::Tilted => az
-                .with_scale_tilt(params.alpha)
-                .with_rough_surface(params.beta)
-                .with_rough_deflection(params.beta)
+        let cuticle = (scales == Scales::Tilted)
+            .then(|| Arc::new(TiltedCuticle::rough(params.eta, params.alpha, params.beta)));
+        let az = match &cuticle {
+            None => az,
+            Some(cuticle) => az
+                .with_cuticle(cuticle.clone())
                 .with_azimuthal_variance(2, cones::trt_azimuthal_variance(params.beta))
                 .with_azimuthal_variance(3, cones::trrt_azimuthal_variance(params.beta)),
         };
@@ -142,6 +147,7 @@ impl NonSeparable {
             params,
             scales,
             deon: DEon2011::with_azimuthal(params, az)?,
+            cuticle,
             iterations: DEFAULT_ITERATIONS,
             tt_offsets: OnceLock::new(),
             selection: None,
@@ -172,12 +178,12 @@ impl NonSeparable {
         if self.scales == Scales::Tilted && self.params.beta < rough::mirror::LEAST_BETA {
             self.mirror_cones = Some(Arc::new(MirrorTable::build(self.params.alpha)));
         }
-        if self.azimuthal().scale_tilt != 0.0 {
+        if self.azimuthal().tilted() {
             let az = self.azimuthal();
             let table = ShiftTable::build(|p, theta_i, h| az.deflection_shift(p, theta_i, h));
             self.shifts = Some(Arc::new(table));
         }
-        if self.azimuthal().surface().is_flat_and_smooth() {
+        if self.azimuthal().is_flat_and_smooth() {
             self.deon = self.deon.tabulated();
             return self;
         }
@@ -186,6 +192,19 @@ impl NonSeparable {
         self.deon = self.deon.tabulated_with_selection(&selection);
         self.selection = Some(table);
         self
+    }
+
+    /// The surface A(p, h) meets: the tilted cuticle's, or the paper's smooth, untilted one.
+    fn surface(&self) -> Surface<'_> {
+        match &self.cuticle {
+            Some(cuticle) => cuticle.surface(),
+            None => Surface::smooth(self.params.eta, 0.0),
+        }
+    }
+
+    /// TT's exit per offset through the rough surface (the tilted model's).
+    fn rough_tt(&self) -> Option<&RoughTtTable> {
+        self.cuticle.as_ref()?.rough_tt.as_deref()
     }
 
     /// N_R off the rough surface ([`rough_mirror`]), in the tilted model where the spread is
@@ -237,7 +256,7 @@ impl NonSeparable {
     /// ([`Self::lobe_energies`]).
     pub fn energy_budget(&self, theta_i: f64) -> TiltedAttenuation {
         let az = self.azimuthal();
-        energy_budget(theta_i, az.surface(), az.mu_a)
+        energy_budget(theta_i, self.surface(), az.mu_a)
     }
 
     /// What each lobe of S integrates to at θ_i, ∫ S_p dω_o (every M integrates to 1, and
@@ -281,7 +300,7 @@ impl NonSeparable {
             (RPair::Mirrors(mirrors), _) => mirrors,
         };
         let az = self.azimuthal();
-        if az.scale_tilt != 0.0 {
+        if az.tilted() {
             match (&self.selection, weighting) {
                 // R's share of the offsets that reach φ, as the sampler chooses it.
                 (Some(table), Weighting::Selection) => DVec3::splat(
@@ -291,7 +310,9 @@ impl NonSeparable {
                         .map(|m| 0.5 * m.dh_dphi * table.at(theta_i, m.h)[0])
                         .sum(),
                 ),
-                _ => az.eval_r_at_mirrors(theta_i, mirrors, weighting),
+                _ => {
+                    az.eval_r_at_offsets(theta_i, &mirrors.map(|m| m.map(ROffset::from)), weighting)
+                }
             }
         } else {
             az.eval(0, theta_i, pair.theta_d, pair.phi, weighting)

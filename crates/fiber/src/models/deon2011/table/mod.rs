@@ -392,7 +392,7 @@ fn row_nodes(az: &AzimuthalScattering, selection: Option<Selection>, theta_i: f6
         .map(|&p| az.panel_count(p, az.eta))
         .max()
         .unwrap_or(2);
-    if az.surface().is_flat_and_smooth() || panels * PANEL_NODES <= TRACED_OFFSETS {
+    if az.is_flat_and_smooth() || panels * PANEL_NODES <= TRACED_OFFSETS {
         return row_nodes_on(az, selection, theta_i, panels, |_, h| {
             az.attenuation(theta_i, h)
         });
@@ -498,8 +498,8 @@ fn splat_row(
     for (l, &p) in BLURRED.iter().enumerate() {
         // One splat for the lobe, or one per node where its spread varies with the offset.
         let fixed = Splat::new(az.v_n[p].sqrt(), phi_nodes);
-        let splats: Vec<Splat> = match az.rough_tt {
-            Some(_) if p == 1 => nodes
+        let splats: Vec<Splat> = match az.cuticle() {
+            Some(c) if c.owns_exit(p) => nodes
                 .iter()
                 .map(|n| Splat::new(n.sigma[l], phi_nodes))
                 .collect(),

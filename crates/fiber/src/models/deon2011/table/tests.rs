@@ -1,4 +1,5 @@
 use super::*;
+use crate::models::nonseparable::cuticle::{WithScales, surface_of};
 
 /// Per lobe (TT, TRT, TRRT, rest) and for their sum: Σ|table − direct| / Σ direct over a
 /// grid of (θ_i, θ_o, φ) that falls between the table's nodes.
@@ -252,7 +253,7 @@ fn energy_follows_the_lobe_between_the_nodes() {
     let energy = |theta_i: f64| {
         crate::models::nonseparable::scales::attenuation::energy_budget(
             theta_i,
-            az.surface(),
+            surface_of(&az),
             DVec3::ZERO,
         )
         .lobes

@@ -65,6 +65,7 @@ impl SelectionTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::models::nonseparable::cuticle::WithScales;
     use glam::DVec3;
 
     /// Mean absolute error of R's probability against the exact one over a grid offset from

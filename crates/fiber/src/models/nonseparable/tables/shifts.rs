@@ -108,6 +108,7 @@ fn h_at(k: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::models::deon2011::azimuthal::AzimuthalScattering;
+    use crate::models::nonseparable::cuticle::WithScales;
 
     /// Between the nodes and the checked centres (a grid that shares neither), the table
     /// answers within a few tolerances of the traced shift wherever it answers, and answers
@@ -115,8 +116,8 @@ mod tests {
     #[test]
     fn shift_table_follows_the_exact_shift() {
         for alpha_deg in [-4.0f64, 2.0] {
-            let mut az = AzimuthalScattering::new(1.55, 0.04, glam::DVec3::ZERO);
-            az.scale_tilt = alpha_deg.to_radians();
+            let az = AzimuthalScattering::new(1.55, 0.04, glam::DVec3::ZERO)
+                .with_scale_tilt(alpha_deg.to_radians());
             let table = ShiftTable::build(|p, theta_i, h| az.deflection_shift(p, theta_i, h));
             let (mut worst, mut asked, mut solved) = (0.0f64, 0, 0);
             for i in 0..311 {

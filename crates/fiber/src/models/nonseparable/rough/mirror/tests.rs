@@ -1,5 +1,6 @@
 use super::*;
 use crate::models::deon2011::azimuthal::AzimuthalScattering;
+use crate::models::nonseparable::cuticle::WithScales;
 
 const ETA: f64 = 1.55;
 
