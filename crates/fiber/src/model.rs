@@ -35,6 +35,11 @@ pub trait FiberModel: Send + Sync {
     /// The density (per steradian) with which [`FiberModel::sample`] draws ω_o.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64;
 
+    /// Switches the model to its tabulated fast path (the tables built once for its
+    /// parameters), as each model's own `tabulated` does; a model without tables keeps
+    /// evaluating directly.
+    fn tabulate(&mut self) {}
+
     /// S at a known offset h ∈ [−1, 1] of the ray from ω_i across the fiber's projected width
     /// (docs/conventions.md §2): the near field, whose average over h is [`FiberModel::eval`].
     /// A far-field model (every model but Chiang 2016) has no h and returns its S.

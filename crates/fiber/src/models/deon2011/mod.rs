@@ -350,6 +350,10 @@ impl DEon2011 {
 }
 
 impl FiberModel for DEon2011 {
+    fn tabulate(&mut self) {
+        *self = self.clone().tabulated();
+    }
+
     fn name(&self) -> &'static str {
         "deon2011"
     }

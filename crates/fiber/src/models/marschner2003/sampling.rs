@@ -282,6 +282,10 @@ impl Marschner2003 {
 }
 
 impl FiberModel for Marschner2003 {
+    fn tabulate(&mut self) {
+        *self = self.clone().tabulated();
+    }
+
     fn name(&self) -> &'static str {
         "marschner"
     }

@@ -440,6 +440,10 @@ impl NonSeparable {
 }
 
 impl FiberModel for NonSeparable {
+    fn tabulate(&mut self) {
+        *self = self.clone().tabulated();
+    }
+
     fn name(&self) -> &'static str {
         match self.scales {
             Scales::Tilted => "nonseparable",
