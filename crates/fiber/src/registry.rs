@@ -2,7 +2,7 @@
 //! the benches use: [`ModelId`] parses a name, lists them all and builds the model for a
 //! fiber's parameters, on its tabulated fast path or evaluated directly ([`Tabulation`]).
 //! Adding a model is its folder under `models/` (with its `pub mod` line in `models/mod.rs`),
-//! its variant of [`ModelId`] and its line in [`REGISTRY`].
+//! its variant of [`ModelId`] and its line in `REGISTRY`.
 
 use crate::model::FiberModel;
 use crate::models::chiang2016::Chiang2016;

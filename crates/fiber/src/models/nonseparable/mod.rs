@@ -7,7 +7,7 @@
 //! 1. N_p, the azimuthal terms of d'Eon 2011 (eq. 4, [`crate::models::deon2011::azimuthal`]), with
 //!    A(p, h), Φ(p, h) and TT's spread taken through the tilted scales ([`scales`]) and the
 //!    rough surface ([`rough`]) in the tilted form;
-//! 2. M_p, the longitudinal lobes ([`longitudinal`]): cone angles and widths from the Nusselt
+//! 2. M_p, the longitudinal lobes (`longitudinal.rs`): cone angles and widths from the Nusselt
 //!    analysis of §2.2 ([`cones`]); R's vary with φ (§2.3), TT's with the offset h that
 //!    Φ(1, h) = φ selects (§2.4), TRT's with θ_d (§2.5); TRRT and the p ≥ 4 remainder keep
 //!    d'Eon 2011's lobes;
@@ -15,7 +15,7 @@
 //!
 //! The fast path ([`NonSeparable::tabulated`]) reads N_p from d'Eon 2011's table and M_p's
 //! cones, widths, R's mirrors, the tilt's shifts and the lobe-selection densities from
-//! [`tables`]; the model without tables is the reference they are measured against. The model
+//! `tables/`; the model without tables is the reference they are measured against. The model
 //! is not reciprocal, like d'Eon 2011. Where the tilted form departs from the paper, and
 //! why, is `docs/nonseparable.md`; the figures are in `docs/validation.md`.
 //!
@@ -159,13 +159,13 @@ impl NonSeparable {
     }
 
     /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]), TT's
-    /// and TRT's lobes (`lobe_table.rs`) and, where A(p, h) is a trace through tilted or rough
-    /// scales (the tilted model, at any α), its lobe selection (`selection.rs`): without it a
+    /// and TRT's lobes (`tables/sine_lobes.rs`) and, where A(p, h) is a trace through tilted or rough
+    /// scales (the tilted model, at any α), its lobe selection (`tables/selection.rs`): without it a
     /// sample traces A(p, h) at its offset, and R's rough mirror at every node. The tilted
-    /// model also tabulates R's mirror (`mirror_table.rs`) where R's lobe is not the rough
+    /// model also tabulates R's mirror (`tables/mirrors.rs`) where R's lobe is not the rough
     /// mirror's (β < [`rough::mirror::LEAST_BETA`]), which it otherwise solves by Newton's
     /// method at every evaluation, and, with tilted scales, TT's and TRT's tilt shift
-    /// for the sampler (`shift_table.rs`), which it otherwise traces at every draw.
+    /// for the sampler (`tables/shifts.rs`), which it otherwise traces at every draw.
     pub fn tabulated(mut self) -> Self {
         // R's spread weighs offsets by the selection this builds.
         self.rough_mirror = OnceLock::new();

@@ -1,6 +1,6 @@
 //! The attenuation A(p, h) of a smooth fiber whose cuticle scales tilt by α, traced through the
 //! full Nusselt rotation sequence of d'Eon et al. 2014 §2.2 with every event checked
-//! ([`nusselt::AtScale`]): the project's own extension of the paper, which takes A from the
+//! ([`crate::geometry::nusselt::AtScale`]): the project's own extension of the paper, which takes A from the
 //! untilted fiber (d'Eon et al. 2011) and so keeps energy a tilted fiber loses.
 //!
 //! Tilted scales act as a shading normal (d'Eon et al. 2014 §2.1, as `cuticle-sim` models them):
