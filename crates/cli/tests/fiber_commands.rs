@@ -188,3 +188,32 @@ fn lobes_images_hold_the_furnaces_energy_at_every_beta() {
         );
     }
 }
+
+/// `--model` offers every model of the fiber crate's registry under its name (Chiang 2016 and
+/// the paper's non-separable form included), and the record names the model it ran.
+#[test]
+fn every_registry_model_runs_the_furnace() {
+    for name in cuticle_fiber::ModelId::names() {
+        let dir = tempfile::tempdir().unwrap();
+        let run = cuticle(&[
+            "furnace",
+            "--model",
+            name,
+            "--mu-a",
+            "0",
+            "--alpha-deg",
+            "0",
+            "--theta-i",
+            "0.5",
+            "--out",
+            dir.path().to_str().unwrap(),
+        ]);
+        assert!(run.status.success(), "{name}: {}", common::stderr(&run));
+        let json: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.path().join("furnace.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["params"]["model"], name);
+        let albedo = json["results"][0]["albedo"].as_f64().unwrap();
+        assert!(albedo > 0.5 && albedo < 1.05, "{name}: albedo {albedo}");
+    }
+}

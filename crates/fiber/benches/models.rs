@@ -18,9 +18,11 @@
 mod inputs;
 
 use criterion::{BatchSize, Criterion, Throughput};
-use cuticle_fiber::azimuthal::AzimuthalScattering;
-use cuticle_fiber::table::AzimuthalTable;
-use cuticle_fiber::{Chiang2016, DEon2011, FiberAngles, FiberModel, Marschner2003, NonSeparable};
+use cuticle_fiber::models::deon2011::azimuthal::AzimuthalScattering;
+use cuticle_fiber::models::deon2011::table::AzimuthalTable;
+use cuticle_fiber::{
+    BuildOptions, FiberAngles, FiberModel, Marschner2003, ModelId, NonSeparable, Tabulation,
+};
 use inputs::{cases, params};
 use std::hint::black_box;
 use std::path::PathBuf;
@@ -116,18 +118,20 @@ fn bench_calls(c: &mut Criterion, group: &str, calls: &Calls) {
 
 fn models(c: &mut Criterion) {
     let p = params();
-    let deon = DEon2011::new(p).unwrap().tabulated();
-    bench_calls(c, ROWS[0].0, &far_field(&deon));
-    let chiang = Chiang2016::new(p, p.beta).unwrap();
-    bench_calls(c, ROWS[1].0, &near_field(&chiang, H));
-    let nonsep = NonSeparable::new(p).unwrap().tabulated();
-    bench_calls(c, ROWS[2].0, &far_field(&nonsep));
-    let marschner = Marschner2003::from_fiber(&p).unwrap();
-    let marschner_table = marschner.clone().tabulated();
-    bench_calls(c, ROWS[3].0, &far_field(&marschner_table));
-    bench_calls(c, "marschner2003_exact", &far_field(&marschner));
-    bench_calls(c, "chiang2016_far", &far_field(&chiang));
-    bench_calls(c, "deon2011_direct", &far_field(&DEon2011::new(p).unwrap()));
+    let build = |id: ModelId, tabulation| id.build(&p, &BuildOptions::with(tabulation)).unwrap();
+    let deon = build(ModelId::DEon2011, Tabulation::Tabulated);
+    bench_calls(c, ROWS[0].0, &far_field(deon.as_ref()));
+    let chiang = build(ModelId::Chiang2016, Tabulation::Direct);
+    bench_calls(c, ROWS[1].0, &near_field(chiang.as_ref(), H));
+    let nonsep = build(ModelId::NonSeparable, Tabulation::Tabulated);
+    bench_calls(c, ROWS[2].0, &far_field(nonsep.as_ref()));
+    let marschner_table = build(ModelId::Marschner, Tabulation::Tabulated);
+    bench_calls(c, ROWS[3].0, &far_field(marschner_table.as_ref()));
+    let marschner = build(ModelId::Marschner, Tabulation::Direct);
+    bench_calls(c, "marschner2003_exact", &far_field(marschner.as_ref()));
+    bench_calls(c, "chiang2016_far", &far_field(chiang.as_ref()));
+    let deon_direct = build(ModelId::DEon2011, Tabulation::Direct);
+    bench_calls(c, "deon2011_direct", &far_field(deon_direct.as_ref()));
 }
 
 fn table_build(c: &mut Criterion) {

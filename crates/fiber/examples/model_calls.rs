@@ -9,7 +9,7 @@
 //! interleaved, and prints per call the fastest round and the median round. Other programs on a
 //! shared host only ever add time, so the fastest round is the steadiest figure for comparing
 //! two builds run one after the other; the median is the one to quote.
-use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, Marschner2003, NonSeparable};
+use cuticle_fiber::{BuildOptions, FiberModel, ModelId, Tabulation};
 use std::hint::black_box;
 
 const CALLS: usize = 4096;
@@ -71,23 +71,20 @@ fn warm_up(m: &dyn FiberModel, h: Option<f64>, cases: &[Case]) -> f64 {
 fn main() {
     let p = inputs::params();
     let which = std::env::args().nth(1).unwrap_or_else(|| "deon2011".into());
-    let (model, h): (Box<dyn FiberModel>, Option<f64>) = match which.as_str() {
-        "deon2011" => (Box::new(DEon2011::new(p).unwrap().tabulated()), None),
-        "chiang2016" => (Box::new(Chiang2016::new(p, p.beta).unwrap()), Some(0.3)),
-        "nonseparable" => (Box::new(NonSeparable::new(p).unwrap().tabulated()), None),
-        "marschner2003" => (
-            Box::new(Marschner2003::from_fiber(&p).unwrap().tabulated()),
-            None,
-        ),
-        "marschner2003_exact" => (Box::new(Marschner2003::from_fiber(&p).unwrap()), None),
-        other => {
-            eprintln!(
-                "unknown model {other}: deon2011, chiang2016, nonseparable, marschner2003, \
-                 marschner2003_exact"
-            );
+    // A registry name, `_exact` for its direct (untabulated) form; Chiang 2016 at h = 0.3.
+    let (name, tabulation) = match which.strip_suffix("_exact") {
+        Some(name) => (name, Tabulation::Direct),
+        None => (which.as_str(), Tabulation::Tabulated),
+    };
+    let id = match name.parse::<ModelId>() {
+        Ok(id) => id,
+        Err(e) => {
+            eprintln!("{e}; add _exact for the direct form");
             std::process::exit(2);
         }
     };
+    let model = id.build(&p, &BuildOptions::with(tabulation)).unwrap();
+    let h = (id == ModelId::Chiang2016).then_some(0.3);
     let cases = inputs::cases(CALLS);
     if std::env::args().any(|a| a == "--time") {
         time_calls(&which, model.as_ref(), h, &cases);

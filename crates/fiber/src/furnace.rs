@@ -7,10 +7,10 @@
 //! and spanning the scale-tilt shifts); in φ, uniform panels. The same rule at half the
 //! resolution gives the error estimate.
 
-use crate::frame::FiberAngles;
+use crate::geometry::frame::FiberAngles;
 use crate::lobe::LobeValues;
+use crate::math::GaussLegendre;
 use crate::model::FiberModel;
-use crate::special::GaussLegendre;
 use glam::DVec3;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -114,7 +114,7 @@ fn uniform_breaks(a: f64, b: f64, n: usize) -> Vec<f64> {
 mod tests {
     use super::*;
     use crate::lobe::Lobe;
-    use crate::longitudinal::LongitudinalLobe;
+    use crate::lobes::longitudinal::LongitudinalLobe;
     use crate::model::FiberSample;
 
     /// The rule's cost is bounded for any β (issue 9: β = 1e-3 took 50 s and 1e-9 never

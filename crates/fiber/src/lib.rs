@@ -1,8 +1,23 @@
-//! Hair fiber scattering: the shared fiber frame and lat-long grid, the special functions and
-//! Fresnel factors the models share, and the models themselves — [`Marschner2003`],
-//! [`DEon2011`], [`NonSeparable`] and [`Chiang2016`] (near-field in h, [`FiberModel::eval_at`]) — each able to evaluate S (docs/conventions.md §3), importance-sample
-//! it and report the sampling pdf through [`FiberModel`]. [`table::AzimuthalTable`] is the fast
-//! path for the azimuthal terms of the last two, [`furnace`] the white-furnace integrator.
+//! Hair fiber scattering: the fiber frame and angles, the numerics and optics the models share,
+//! and the models themselves, each able to evaluate S (docs/conventions.md §3),
+//! importance-sample it and report the sampling pdf through [`FiberModel`].
+//!
+//! The rooms, lowest first (each uses only the ones above it):
+//! - [`math`]: special functions by family, quadrature, Blinn's cubic, vMF, table helpers;
+//! - [`geometry`]: the fiber frame, the lat-long grid, Bravais' refraction, Nusselt rotations;
+//! - [`optics`]: Fresnel, melanin absorption, d'Eon 2011's attenuation, Beckmann, the rough
+//!   interface;
+//! - [`lobes`]: longitudinal lobes, the wrapped Gaussian, skewed sine lobes;
+//! - [`models`]: one folder per model — [`Marschner2003`], [`DEon2011`] (with its azimuthal
+//!   table), [`Chiang2016`] (near-field in h, [`FiberModel::eval_at`]) and [`NonSeparable`]
+//!   (whose tilted and rough scales are its own rooms, which d'Eon 2011 does not see);
+//! - [`registry`]: every model by name ([`ModelId`]), built tabulated or direct; [`furnace`],
+//!   the white-furnace integrator.
+//!
+//! Adding a model: its folder under `models/` implementing [`FiberModel`] (and
+//! [`FiberModel::tabulate`] if it has a fast path), its `pub mod` line in `models/mod.rs`, its
+//! variant of [`ModelId`] and its one line in the registry (`registry.rs`). The command line,
+//! the validation, the path tracer and the benches then offer it by its name.
 //!
 //! ```
 //! use cuticle_fiber::{DEon2011, FiberAngles, FiberModel, FiberParams};
@@ -14,46 +29,43 @@
 //! assert!(sample.pdf > 0.0);
 //! ```
 
-pub mod absorption;
-pub mod attenuation;
-pub mod azimuthal;
-pub mod beckmann;
-pub mod bravais;
-pub mod chiang2016;
-pub mod cubic;
-pub mod deon2011;
-pub mod frame;
-pub mod fresnel;
 pub mod furnace;
-pub mod latlong;
+pub mod geometry;
 pub mod lobe;
-pub mod longitudinal;
-pub mod marschner2003;
+pub mod lobes;
+pub mod math;
 pub mod model;
-pub mod nonseparable;
-pub mod nusselt;
+pub mod models;
+pub mod optics;
 pub mod params;
 pub mod ranges;
-pub mod rough_deflection;
-pub mod rough_interface;
-pub mod rough_trt;
-pub mod sine_lobe;
-pub mod special;
-pub mod table;
+pub mod registry;
 #[cfg(test)]
 pub(crate) mod testing;
-pub mod tilted_attenuation;
-pub mod tilted_deflection;
-pub mod tilted_mirror;
-pub mod vmf;
 
-pub use chiang2016::Chiang2016;
-pub use deon2011::DEon2011;
-pub use frame::{FiberAngles, FiberFrame, wrap_pi};
-pub use latlong::{LatLongGrid, LatLongImage};
+pub use geometry::frame::{FiberAngles, FiberFrame, wrap_pi};
+pub use geometry::latlong::{LatLongGrid, LatLongImage};
 pub use lobe::{Lobe, LobeValues};
-pub use marschner2003::Marschner2003;
 pub use model::{FiberModel, FiberSample};
-pub use nonseparable::NonSeparable;
+pub use models::chiang2016::Chiang2016;
+pub use models::deon2011::DEon2011;
+pub use models::marschner2003::Marschner2003;
+pub use models::nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
 pub use ranges::{Range, RangeError};
+pub use registry::{BuildOptions, ModelId, Tabulation};
+
+// The module paths before the fiber crate moved into rooms, for the crates whose owners move
+// them to the new ones (render, gpu, the command line).
+#[doc(hidden)]
+pub use geometry::{bravais, frame, latlong};
+#[doc(hidden)]
+pub use lobes::azimuthal;
+#[doc(hidden)]
+pub use math as special;
+#[doc(hidden)]
+pub use math::vmf;
+#[doc(hidden)]
+pub use models::{marschner2003, nonseparable};
+#[doc(hidden)]
+pub use optics::{absorption, fresnel};

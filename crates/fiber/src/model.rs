@@ -1,7 +1,7 @@
 //! The interface every fiber model offers: evaluate S per lobe, sample an outgoing direction,
 //! and report the density of that sampling.
 
-use crate::frame::FiberAngles;
+use crate::geometry::frame::FiberAngles;
 use crate::lobe::{Lobe, LobeValues};
 use glam::DVec3;
 
@@ -35,6 +35,11 @@ pub trait FiberModel: Send + Sync {
     /// The density (per steradian) with which [`FiberModel::sample`] draws ω_o.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64;
 
+    /// Switches the model to its tabulated fast path (the tables built once for its
+    /// parameters), as each model's own `tabulated` does; a model without tables keeps
+    /// evaluating directly.
+    fn tabulate(&mut self) {}
+
     /// S at a known offset h ∈ [−1, 1] of the ray from ω_i across the fiber's projected width
     /// (docs/conventions.md §2): the near field, whose average over h is [`FiberModel::eval`].
     /// A far-field model (every model but Chiang 2016) has no h and returns its S.
@@ -55,7 +60,7 @@ pub trait FiberModel: Send + Sync {
 
 /// Converts a density in (θ, φ) to a density per steradian.
 pub fn per_steradian(pdf_theta_phi: f64, theta_o: f64) -> f64 {
-    pdf_theta_phi / crate::special::cos_quadrant(theta_o).max(1e-300)
+    pdf_theta_phi / crate::math::cos_quadrant(theta_o).max(1e-300)
 }
 
 /// Remaps a uniform number that selected slot `k` of a discrete distribution back to [0, 1),
@@ -70,6 +75,28 @@ pub fn select_and_remap(probs: &[f64], u: f64) -> (usize, f64) {
     }
     let k = probs.iter().rposition(|&p| p > 0.0).unwrap_or(0);
     (k, 0.5)
+}
+
+/// A sample of S (all lobes, RGB) drawn with density `pdf`: weight S / pdf; `None` where the
+/// density vanishes or the weight is not finite. For models that find S and pdf together.
+pub(crate) fn weighted_sample(
+    wo: FiberAngles,
+    s: DVec3,
+    pdf: f64,
+    lobe: Lobe,
+    iterations: u32,
+) -> Option<FiberSample> {
+    if !(pdf > 0.0 && pdf.is_finite()) {
+        return None;
+    }
+    let weight = s / pdf;
+    weight.is_finite().then_some(FiberSample {
+        wo,
+        weight,
+        pdf,
+        lobe,
+        iterations,
+    })
 }
 
 #[cfg(test)]

@@ -6,9 +6,9 @@
 //! number of cases tested (Šidák). [`check_weights`] checks that every sample reports the
 //! density `pdf` gives and the weight S / pdf.
 
-use crate::frame::FiberAngles;
+use crate::geometry::frame::FiberAngles;
+use crate::math::GaussLegendre;
 use crate::model::FiberModel;
-use crate::special::GaussLegendre;
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use std::f64::consts::PI;

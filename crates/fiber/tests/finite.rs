@@ -3,7 +3,7 @@
 //! and non-negative, for d'Eon 2011, the non-separable model and Chiang 2016 (far field and at an
 //! offset h; Marschner 2003 has its own).
 
-use cuticle_fiber::chiang2016::AtOffset;
+use cuticle_fiber::models::chiang2016::AtOffset;
 use cuticle_fiber::{Chiang2016, DEon2011, FiberAngles, FiberModel, FiberParams, NonSeparable};
 use glam::DVec3;
 use proptest::prelude::*;

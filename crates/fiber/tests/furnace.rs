@@ -22,7 +22,7 @@
 //! `tilted_scales_lose_what_the_budget_says` prints how much is lost.
 
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
-use cuticle_fiber::nonseparable::Scales;
+use cuticle_fiber::models::nonseparable::Scales;
 use cuticle_fiber::{DEon2011, FiberModel, FiberParams, NonSeparable};
 use glam::DVec3;
 

@@ -4,9 +4,9 @@
 //! factor at each hit's own incidence angle, Beer–Lambert along each chord) within 2 %, away
 //! from the TRT caustics; and every traced path leaves on the cone θ_o = −θ_i.
 
-use cuticle_fiber::azimuthal::{AzimuthalScattering, Weighting};
-use cuticle_fiber::fresnel::fresnel_dielectric;
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
+use cuticle_fiber::models::deon2011::azimuthal::{AzimuthalScattering, Weighting};
+use cuticle_fiber::optics::fresnel::fresnel_dielectric;
 use cuticle_fiber::{FiberAngles, wrap_pi};
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -104,13 +104,13 @@ fn model_bins(az: &AzimuthalScattering, p: usize, theta_i: f64) -> [f64; BINS] {
 
 /// φ bins holding a TRT caustic (where dΦ(2, h)/dh = 0) and their neighbours.
 fn near_trt_caustic(bin: usize, theta_i: f64, eta: f64) -> bool {
-    let eta_p = cuticle_fiber::bravais::eta_prime(eta, theta_i);
+    let eta_p = cuticle_fiber::geometry::bravais::eta_prime(eta, theta_i);
     if eta_p >= 2.0 {
         return false;
     }
     // dΦ/dγ = 4 cos γ / (η′ cos γ_t) − 2 = 0 at cos²γ = (η′² − 1)/3.
     let gamma = ((eta_p * eta_p - 1.0) / 3.0).sqrt().acos();
-    let phi_c = wrap_pi(cuticle_fiber::bravais::azimuthal_deflection(
+    let phi_c = wrap_pi(cuticle_fiber::geometry::bravais::azimuthal_deflection(
         2,
         gamma.sin(),
         eta_p,

@@ -14,9 +14,11 @@
 //! The same trace gives the exit azimuths that `tilted_deflection` must reproduce (issue 14,
 //! departure 9 of docs/validation.md).
 
-use cuticle_fiber::nonseparable::{trt_exit, tt_exit};
-use cuticle_fiber::nusselt::{self, Blocked};
-use cuticle_fiber::tilted_attenuation::{Surface, incident, tilted_attenuation};
+use cuticle_fiber::geometry::nusselt::{self, Blocked};
+use cuticle_fiber::models::nonseparable::scales::attenuation::{
+    Surface, incident, tilted_attenuation,
+};
+use cuticle_fiber::models::nonseparable::{trt_exit, tt_exit};
 use glam::{DVec2, DVec3};
 
 const ETA: f64 = 1.55;
@@ -185,9 +187,9 @@ fn totally_reflected_power_feeds_the_later_lobes_or_is_lost() {
 /// is measurably off.
 #[test]
 fn tilted_deflection_is_the_exit_azimuth_of_an_exact_trace() {
-    use cuticle_fiber::bravais::{azimuthal_deflection, eta_prime};
-    use cuticle_fiber::frame::wrap_pi;
-    use cuticle_fiber::tilted_deflection::tilted_deflection;
+    use cuticle_fiber::geometry::bravais::{azimuthal_deflection, eta_prime};
+    use cuticle_fiber::geometry::frame::wrap_pi;
+    use cuticle_fiber::models::nonseparable::scales::deflection::tilted_deflection;
     for (theta_i, alpha_deg) in [(0.75, -4.0), (0.75, 4.0), (1.1, -2.0), (-0.3, 2.0)] {
         let alpha = f64::to_radians(alpha_deg);
         let (mut compared, mut bravais_off) = ([0usize; 2], [0.0f64; 2]);
@@ -244,7 +246,7 @@ fn tt_exit_tilted(theta_i: f64, [entry, exit]: [f64; 2], h: f64) -> Option<DVec3
 /// somewhere here).
 #[test]
 fn tt_width_through_tilted_scales_is_the_exact_traces_spread() {
-    use cuticle_fiber::nonseparable::cones::{
+    use cuticle_fiber::models::nonseparable::cones::{
         first_order_tt_tilted, variance_from_sine_spread, variance_tt,
     };
     let beta = 0.04;
@@ -344,8 +346,8 @@ fn azimuthal_spread(theta_i: f64, h: f64, p: usize, beta: f64) -> f64 {
 /// of steeper incidence the spread grows past 1.5 β, which the constant leaves out.)
 #[test]
 fn trt_azimuthal_width_is_the_exact_traces_spread_at_h_0_and_the_caustic() {
-    use cuticle_fiber::bravais::eta_prime;
-    use cuticle_fiber::nonseparable::cones::trt_azimuthal_variance;
+    use cuticle_fiber::geometry::bravais::eta_prime;
+    use cuticle_fiber::models::nonseparable::cones::trt_azimuthal_variance;
     let beta = 0.04;
     let model = trt_azimuthal_variance(beta).sqrt();
     let eta_p = eta_prime(ETA, 0.25);
@@ -370,7 +372,7 @@ fn trt_azimuthal_width_is_the_exact_traces_spread_at_h_0_and_the_caustic() {
 /// 0.25 to 0.75 and h up to 0.6; the paper's √2 β is less than half of it.
 #[test]
 fn trrt_azimuthal_width_is_the_exact_traces_spread() {
-    use cuticle_fiber::nonseparable::cones::trrt_azimuthal_variance;
+    use cuticle_fiber::models::nonseparable::cones::trrt_azimuthal_variance;
     let beta = 0.04;
     let model = trrt_azimuthal_variance(beta).sqrt();
     for theta_i in [0.25, 0.5, 0.75] {
@@ -399,8 +401,8 @@ fn trrt_azimuthal_width_is_the_exact_traces_spread() {
 /// Bravais' offset in each; departure 14's cone, solved per azimuth, was within 5e-5.
 #[test]
 fn tt_cone_sits_where_the_exact_traces_exit_leaves() {
-    use cuticle_fiber::bravais::eta_prime;
-    use cuticle_fiber::nonseparable::{NonSeparable, tt_lobe_rough, tt_offset};
+    use cuticle_fiber::geometry::bravais::eta_prime;
+    use cuticle_fiber::models::nonseparable::{NonSeparable, tt_lobe_rough, tt_offset};
     use cuticle_fiber::params::FiberParams;
     let beta = 0.0025;
     for (theta_i, alpha_deg) in [(0.75, 4.0), (0.75, -4.0), (0.25, 4.0), (1.1, -2.0)] {
@@ -447,11 +449,12 @@ fn tt_cone_sits_where_the_exact_traces_exit_leaves() {
 /// θ_d = −θ_i, as Bravais has it, TT's misses by 13 % at θ_i = 1.1, α = −4°.
 #[test]
 fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
-    use cuticle_fiber::azimuthal::{AzimuthalScattering, Weighting};
-    use cuticle_fiber::frame::wrap_pi;
-    use cuticle_fiber::nonseparable::NonSeparable;
+    use cuticle_fiber::geometry::frame::wrap_pi;
+    use cuticle_fiber::math::erfc;
+    use cuticle_fiber::models::deon2011::azimuthal::{AzimuthalScattering, Weighting};
+    use cuticle_fiber::models::nonseparable::NonSeparable;
+    use cuticle_fiber::models::nonseparable::cuticle::WithScales;
     use cuticle_fiber::params::FiberParams;
-    use cuticle_fiber::special::erfc;
     use std::f64::consts::PI;
     const BINS: usize = 128;
     const SUBSAMPLES: usize = 16;
@@ -539,7 +542,7 @@ fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
 /// offsets. The paper's width at θ_d = −θ_i is off by more than a fifth somewhere here.
 #[test]
 fn trt_width_through_tilted_scales_is_the_exact_traces_spread() {
-    use cuticle_fiber::nonseparable::cones::{trt_lobe_over_offsets, variance_trt};
+    use cuticle_fiber::models::nonseparable::cones::{trt_lobe_over_offsets, variance_trt};
     const HALF_OFFSETS: usize = 400;
     let beta = 0.02;
     let sigma = beta / 2f64.sqrt();
@@ -606,11 +609,11 @@ fn trt_width_through_tilted_scales_is_the_exact_traces_spread() {
 /// toward the pole (θ_i = 1.3, α = −2°); at θ_i = 0.25 it leaves it be.
 #[test]
 fn trt_cut_is_the_spread_of_the_paths_that_leave() {
-    use cuticle_fiber::fresnel::fresnel_dielectric;
-    use cuticle_fiber::nonseparable::cones::{first_order_trt_tilted, trt_axial_cut};
+    use cuticle_fiber::models::nonseparable::cones::{first_order_trt_tilted, trt_axial_cut};
+    use cuticle_fiber::optics::fresnel::fresnel_dielectric;
     const TILTS: usize = 32;
     let quantiles: Vec<f64> = (0..TILTS)
-        .map(|k| cuticle_fiber::special::normal_quantile((k as f64 + 0.5) / TILTS as f64))
+        .map(|k| cuticle_fiber::math::normal_quantile((k as f64 + 0.5) / TILTS as f64))
         .collect();
     let scale = (quantiles.iter().map(|q| q * q).sum::<f64>() / TILTS as f64).sqrt();
     let beta = 0.04;
@@ -670,7 +673,7 @@ fn trt_cut_is_the_spread_of_the_paths_that_leave() {
         let mean = m1 / m0;
         let spread = (m2 / m0 - mean * mean).sqrt();
         let cut = trt_axial_cut(theta_i, alpha, ETA, beta).expect("TRT leaves");
-        let model_spread = |lobe: cuticle_fiber::nonseparable::CutLobe| {
+        let model_spread = |lobe: cuticle_fiber::models::nonseparable::CutLobe| {
             let c2 = 1.0 - lobe.sin_cone * lobe.sin_cone;
             (lobe.variance * c2 + (lobe.variance * lobe.sin_cone).powi(2)).sqrt()
         };

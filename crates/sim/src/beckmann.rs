@@ -1,9 +1,9 @@
 //! Sampling the Beckmann microfacet distribution (Walter et al. 2007 §5.1, eqs. 28–29); the
-//! distribution and its Smith term are the fiber crate's ([`cuticle_fiber::beckmann`]), which
+//! distribution and its Smith term are the fiber crate's ([`cuticle_fiber::optics::beckmann`]), which
 //! the models' rough interface averages over.
 
-pub use cuticle_fiber::beckmann::{distribution, smith_g1};
-use cuticle_fiber::special::ln_fast;
+use cuticle_fiber::math::ln_fast;
+pub use cuticle_fiber::optics::beckmann::{distribution, smith_g1};
 use glam::{DVec2, DVec3};
 
 /// A micro-normal with density D(m)|m·n|, in the local frame where n = +z (Walter 2007

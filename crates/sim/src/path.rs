@@ -130,9 +130,9 @@ enum End {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cuticle_fiber::latlong::LatLongGrid;
-    use cuticle_fiber::rough_deflection::{TABLE_RULE, rough_tt_exit};
-    use cuticle_fiber::tilted_deflection::tilted_exit;
+    use cuticle_fiber::geometry::latlong::LatLongGrid;
+    use cuticle_fiber::models::nonseparable::rough::deflection::{TABLE_RULE, rough_tt_exit};
+    use cuticle_fiber::models::nonseparable::scales::deflection::tilted_exit;
 
     /// TT's circular mean azimuth and its standard deviation over paths entering at one
     /// offset h.
@@ -161,7 +161,7 @@ mod tests {
         (mean, (var / w).sqrt())
     }
 
-    /// The ground truth at fixed offsets against `cuticle_fiber::rough_deflection`'s
+    /// The ground truth at fixed offsets against `cuticle_fiber::models::nonseparable::rough::deflection`'s
     /// quadrature, where the scales tilt toward the tip and the smooth TT path is blocked from
     /// h ≈ 0.89 (θ_i = 0.75, α = +2°, β = 0.04): the quadrature's mean Φ(1, h) and spread
     /// follow the simulated ones at every offset (measured within 0.001 rad and 2.3 %), where

@@ -2,7 +2,7 @@
 //! strand's absorption (exactly what `--method srbf|brute` shade with, through
 //! [`HairParams::fiber`]), or one model of the fiber crate for the whole groom.
 
-use cuticle_fiber::marschner2003::MarschnerError;
+use cuticle_fiber::models::marschner2003::MarschnerError;
 use cuticle_fiber::{FiberModel, Marschner2003};
 use cuticle_render::{HairParams, Scene};
 use std::collections::HashMap;

@@ -15,7 +15,7 @@
 mod common;
 
 use common::{constant_env, ray_across_fiber, single_fiber, spot_env};
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use cuticle_fiber::{Chiang2016, FiberAngles, FiberFrame, FiberModel, FiberParams, Marschner2003};
 use cuticle_light::EnvMap;
 use cuticle_render::scene::world_to_light;

@@ -3,25 +3,26 @@
 
 use crate::error::ValidateError;
 use crate::metrics::{LobeFigures, lobe_figures};
-use crate::models::ModelKind;
+use crate::models::build_model;
 use crate::pixel_integral::{PixelRule, integrate_lobes};
 use crate::sweep_dir::SimConfig;
+use cuticle_fiber::ModelId;
 use cuticle_fiber::{FiberModel, LatLongImage};
 
 /// The figures of one (configuration, model) pair, lobes in the order R, TT, TRT, TRRT, rest.
 #[derive(Clone, Debug)]
 pub struct ConfigFigures {
-    pub model: ModelKind,
+    pub model: ModelId,
     pub lobes: [LobeFigures; 5],
 }
 
 /// `kind`'s five lobe images for `config` on `grid`, by the default [`PixelRule`].
 pub fn model_images(
     config: &SimConfig,
-    kind: ModelKind,
+    kind: ModelId,
     grid: cuticle_fiber::LatLongGrid,
 ) -> Result<[LatLongImage; 5], ValidateError> {
-    let model = kind.build(&config.fiber_params())?;
+    let model = build_model(kind, &config.fiber_params())?;
     Ok(images_of(model.as_ref(), config, grid))
 }
 
@@ -40,7 +41,7 @@ pub fn images_of(
 /// The figures of `kind` against the simulated lobe images `sim` of `config`.
 pub fn compare_config(
     config: &SimConfig,
-    kind: ModelKind,
+    kind: ModelId,
     sim: &[LatLongImage; 5],
 ) -> Result<ConfigFigures, ValidateError> {
     let images = model_images(config, kind, sim[0].grid)?;
@@ -57,7 +58,7 @@ pub fn with_noise(mut figures: ConfigFigures, seed_to_seed: &[Option<f64>; 5]) -
 
 /// The figures of already rendered model images against `sim`.
 pub fn figures_of(
-    kind: ModelKind,
+    kind: ModelId,
     model: &[LatLongImage; 5],
     sim: &[LatLongImage; 5],
 ) -> ConfigFigures {

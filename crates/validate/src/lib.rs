@@ -11,10 +11,10 @@
 //! φ column, to say how a model's lobe differs where it does.
 //!
 //! ```no_run
-//! use cuticle_validate::{ModelKind, SimConfig, compare_config};
+//! use cuticle_validate::{ModelId, SimConfig, compare_config};
 //! let config = SimConfig::read(std::path::Path::new("out/sweep-small/ti0.75_a-2_b0.04_mu0_eta1.55")).unwrap();
 //! # let sim_images: [cuticle_fiber::LatLongImage; 5] = unimplemented!();
-//! let figures = compare_config(&config, ModelKind::NonSeparable, &sim_images).unwrap();
+//! let figures = compare_config(&config, ModelId::NonSeparable, &sim_images).unwrap();
 //! println!("R error {:?}", figures.lobes[0].relative_l1);
 //! ```
 
@@ -32,9 +32,10 @@ pub mod summary_verdict;
 pub mod sweep_dir;
 
 pub use compare::{ConfigFigures, compare_config, images_of, model_images};
+pub use cuticle_fiber::ModelId;
 pub use error::ValidateError;
 pub use metrics::{LobeFigures, lobe_figures};
-pub use models::ModelKind;
+pub use models::{build_model, parse_models};
 pub use pixel_integral::{PixelRule, integrate_lobes};
 pub use summary::{Row, csv, markdown};
 pub use sweep_dir::{SimConfig, list_configs};

@@ -1,84 +1,37 @@
-//! The models a validation compares, by the names the command line uses, built from a
+//! The models a validation compares (the fiber crate's [`ModelId`]s), built from a
 //! simulated configuration's parameters (α in radians, with the simulator's sign: positive α
 //! tilts the scales toward +u, `cuticle_sim` crate docs).
 
 use crate::error::ValidateError;
-use cuticle_fiber::{DEon2011, FiberModel, FiberParams, Marschner2003, NonSeparable};
-use std::str::FromStr;
+use cuticle_fiber::{BuildOptions, FiberModel, FiberParams, ModelId};
 
-/// A model under validation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum ModelKind {
-    /// With the losses of tilted scales (the fiber crate's default non-separable model).
-    NonSeparable,
-    /// As d'Eon et al. 2014 specifies it.
-    NonSeparablePaper,
-    DEon2011,
-    Marschner,
+/// The model `id` for `params`, on its tabulated azimuthal fast path.
+pub fn build_model(
+    id: ModelId,
+    params: &FiberParams,
+) -> Result<Box<dyn FiberModel>, ValidateError> {
+    id.build(params, &BuildOptions::default())
+        .map_err(|e| ValidateError::Model {
+            model: id.name(),
+            message: e.to_string(),
+        })
 }
 
-impl ModelKind {
-    pub const ALL: [ModelKind; 4] = [
-        ModelKind::NonSeparable,
-        ModelKind::NonSeparablePaper,
-        ModelKind::DEon2011,
-        ModelKind::Marschner,
-    ];
-
-    /// The command-line name.
-    pub const fn name(self) -> &'static str {
-        match self {
-            ModelKind::NonSeparable => "nonseparable",
-            ModelKind::NonSeparablePaper => "nonseparable-paper",
-            ModelKind::DEon2011 => "deon2011",
-            ModelKind::Marschner => "marschner",
+/// A comma-separated list of the fiber crate's model names, such as `nonseparable,deon2011`.
+pub fn parse_models(list: &str) -> Result<Vec<ModelId>, ValidateError> {
+    let mut out = Vec::new();
+    for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let id = name
+            .parse()
+            .map_err(|_| ValidateError::UnknownModel(name.to_string()))?;
+        if !out.contains(&id) {
+            out.push(id);
         }
     }
-
-    /// The model for `params`, each on its tabulated azimuthal fast path.
-    pub fn build(self, params: &FiberParams) -> Result<Box<dyn FiberModel>, ValidateError> {
-        let err = |message: String| ValidateError::Model {
-            model: self.name(),
-            message,
-        };
-        Ok(match self {
-            ModelKind::NonSeparable => Box::new(
-                NonSeparable::new(*params)
-                    .map_err(|e| err(e.to_string()))?
-                    .tabulated(),
-            ),
-            ModelKind::NonSeparablePaper => Box::new(
-                NonSeparable::paper(*params)
-                    .map_err(|e| err(e.to_string()))?
-                    .tabulated(),
-            ),
-            ModelKind::DEon2011 => Box::new(
-                DEon2011::new(*params)
-                    .map_err(|e| err(e.to_string()))?
-                    .tabulated(),
-            ),
-            ModelKind::Marschner => Box::new(
-                Marschner2003::from_fiber(params)
-                    .map_err(|e| err(e.to_string()))?
-                    .tabulated(),
-            ),
-        })
+    if out.is_empty() {
+        return Err(ValidateError::UnknownModel(list.to_string()));
     }
-
-    /// A comma-separated list such as `nonseparable,deon2011`.
-    pub fn parse_list(list: &str) -> Result<Vec<ModelKind>, ValidateError> {
-        let mut out = Vec::new();
-        for name in list.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-            let kind = name.parse()?;
-            if !out.contains(&kind) {
-                out.push(kind);
-            }
-        }
-        if out.is_empty() {
-            return Err(ValidateError::UnknownModel(list.to_string()));
-        }
-        Ok(out)
-    }
+    Ok(out)
 }
 
 /// The models of one fiber, each built on first use and kept while the configurations that
@@ -89,7 +42,7 @@ impl ModelKind {
 #[derive(Default)]
 pub struct FiberModels {
     params: Option<FiberParams>,
-    built: Vec<(ModelKind, Box<dyn FiberModel>)>,
+    built: Vec<(ModelId, Box<dyn FiberModel>)>,
     builds: usize,
 }
 
@@ -98,7 +51,7 @@ impl FiberModels {
     /// the previous fiber's models are dropped).
     pub fn get(
         &mut self,
-        kind: ModelKind,
+        kind: ModelId,
         params: &FiberParams,
     ) -> Result<&dyn FiberModel, ValidateError> {
         if self.params.as_ref() != Some(params) {
@@ -108,7 +61,7 @@ impl FiberModels {
         let at = match self.built.iter().position(|(k, _)| *k == kind) {
             Some(at) => at,
             None => {
-                self.built.push((kind, kind.build(params)?));
+                self.built.push((kind, build_model(kind, params)?));
                 self.builds += 1;
                 self.built.len() - 1
             }
@@ -119,16 +72,6 @@ impl FiberModels {
     /// How many models have been built so far.
     pub fn builds(&self) -> usize {
         self.builds
-    }
-}
-
-impl FromStr for ModelKind {
-    type Err = ValidateError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        ModelKind::ALL
-            .into_iter()
-            .find(|k| k.name() == s)
-            .ok_or_else(|| ValidateError::UnknownModel(s.to_string()))
     }
 }
 
@@ -146,22 +89,21 @@ mod tests {
             ..fiber
         };
         let (wi, wo) = (FiberAngles::new(0.3, 0.0), FiberAngles::new(-0.5, 2.0));
-        let fresh = ModelKind::Marschner.build(&fiber).unwrap().eval(wi, wo);
+        let fresh = build_model(ModelId::Marschner, &fiber)
+            .unwrap()
+            .eval(wi, wo);
         let mut models = FiberModels::default();
         for _ in 0..3 {
-            let kept = models.get(ModelKind::Marschner, &fiber).unwrap();
+            let kept = models.get(ModelId::Marschner, &fiber).unwrap();
             assert_eq!(kept.eval(wi, wo), fresh);
         }
         assert_eq!(models.builds(), 1);
-        models.get(ModelKind::DEon2011, &fiber).unwrap();
-        models.get(ModelKind::Marschner, &fiber).unwrap();
+        models.get(ModelId::DEon2011, &fiber).unwrap();
+        models.get(ModelId::Marschner, &fiber).unwrap();
         assert_eq!(models.builds(), 2);
-        let changed = models
-            .get(ModelKind::Marschner, &other)
-            .unwrap()
-            .eval(wi, wo);
+        let changed = models.get(ModelId::Marschner, &other).unwrap().eval(wi, wo);
         assert_ne!(changed, fresh);
-        models.get(ModelKind::Marschner, &fiber).unwrap();
+        models.get(ModelId::Marschner, &fiber).unwrap();
         assert_eq!(
             models.builds(),
             4,

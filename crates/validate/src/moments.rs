@@ -68,7 +68,7 @@ mod tests {
     fn split_normal_column(mode: f64, s1: f64, s2: f64) -> LatLongImage {
         let g = LatLongGrid::new(4, 400);
         let cdf = |x: f64| {
-            let phi = |z: f64| 0.5 * cuticle_fiber::special::erfc(-z / SQRT_2);
+            let phi = |z: f64| 0.5 * cuticle_fiber::math::erfc(-z / SQRT_2);
             let t = s1 + s2;
             if x < mode {
                 2.0 * s1 / t * phi((x - mode) / s1)

@@ -11,7 +11,7 @@
 //! smooth. The defaults (8, 3, 3) conserve each lobe's energy, as `furnace::albedo` integrates
 //! it independently (the bound is test `pixel_integral_conserves_energy`'s).
 
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
 use cuticle_fiber::{FiberAngles, FiberModel, LatLongGrid, LatLongImage};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -163,7 +163,7 @@ fn integrate_rows(
                 .collect()
         })
         .collect();
-    cuticle_fiber::latlong::lobe_images(grid, &rows)
+    cuticle_fiber::geometry::latlong::lobe_images(grid, &rows)
 }
 
 /// The five lobe images (R, TT, TRT, TRRT, rest) of `model` for light at `theta_i` (φ_i = 0),

@@ -4,9 +4,9 @@
 //! ([`crate::noise`]), and the per-lobe verdicts ([`crate::summary_verdict`]).
 
 use crate::metrics::LobeFigures;
-use crate::models::ModelKind;
 use crate::sweep_dir::SimConfig;
 use cuticle_fiber::Lobe;
+use cuticle_fiber::ModelId;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -27,7 +27,7 @@ pub struct Row {
 }
 
 impl Row {
-    pub fn new(config: &SimConfig, model: ModelKind, lobe: Lobe, figures: LobeFigures) -> Self {
+    pub fn new(config: &SimConfig, model: ModelId, lobe: Lobe, figures: LobeFigures) -> Self {
         Self {
             config: config.name.clone(),
             theta_i: config.theta_i,

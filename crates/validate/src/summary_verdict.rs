@@ -11,12 +11,13 @@
 //! residual: both models sit on the same floor).
 
 use crate::summary::{Row, counted_floor, counted_l1, counted_residual, has_noise};
+use cuticle_fiber::ModelId;
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
-const NONSEPARABLE: &str = "nonseparable";
-const PAPER: &str = "nonseparable-paper";
-const DEON: &str = "deon2011";
+const NONSEPARABLE: &str = ModelId::NonSeparable.name();
+const PAPER: &str = ModelId::NonSeparablePaper.name();
+const DEON: &str = ModelId::DEon2011.name();
 const LOBES: [&str; 5] = ["R", "TT", "TRT", "TRRT", "rest"];
 
 /// Two models' relative L1 on one configuration and lobe.

@@ -5,7 +5,7 @@
 use cuticle_fiber::lobe::channel_mean;
 use cuticle_fiber::{FiberAngles, FiberModel, FiberParams, LatLongGrid, LatLongImage};
 use cuticle_validate::peak::peak_theta_error;
-use cuticle_validate::{ModelKind, PixelRule, integrate_lobes, lobe_figures};
+use cuticle_validate::{ModelId, PixelRule, build_model, integrate_lobes, lobe_figures};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -18,9 +18,9 @@ fn params(beta: f64) -> FiberParams {
     }
 }
 
-fn lobes(kind: ModelKind, beta: f64, grid: LatLongGrid) -> [LatLongImage; 5] {
+fn lobes(kind: ModelId, beta: f64, grid: LatLongGrid) -> [LatLongImage; 5] {
     let p = params(beta);
-    let m = kind.build(&p).unwrap();
+    let m = build_model(kind, &p).unwrap();
     integrate_lobes(
         m.as_ref(),
         0.5,
@@ -31,7 +31,7 @@ fn lobes(kind: ModelKind, beta: f64, grid: LatLongGrid) -> [LatLongImage; 5] {
 
 #[test]
 fn a_model_against_itself_has_zero_error() {
-    let img = lobes(ModelKind::NonSeparable, 0.04, LatLongGrid::default());
+    let img = lobes(ModelId::NonSeparable, 0.04, LatLongGrid::default());
     for lobe in &img {
         let f = lobe_figures(lobe, lobe);
         assert_eq!(f.relative_l1, Some(0.0));
@@ -42,7 +42,7 @@ fn a_model_against_itself_has_zero_error() {
 
 #[test]
 fn a_scaled_copy_has_the_scale_as_error() {
-    let img = lobes(ModelKind::DEon2011, 0.04, LatLongGrid::default());
+    let img = lobes(ModelId::DEon2011, 0.04, LatLongGrid::default());
     for lobe in &img {
         let mut sim = lobe.clone();
         sim.scale(0.8);
@@ -63,7 +63,7 @@ fn shift_rows(img: &LatLongImage, rows: usize) -> LatLongImage {
 
 #[test]
 fn a_shift_by_one_row_is_found_as_one_row() {
-    let img = lobes(ModelKind::DEon2011, 0.04, LatLongGrid::default());
+    let img = lobes(ModelId::DEon2011, 0.04, LatLongGrid::default());
     let row = PI / 100.0;
     for lobe in &img[..3] {
         let shifted = shift_rows(lobe, 1);
@@ -139,11 +139,11 @@ fn sample_histogram(
 fn the_histogram_of_a_models_samples_matches_it_and_not_a_rougher_model() {
     let grid = LatLongGrid::new(100, 25);
     let p = params(0.08);
-    let model = ModelKind::DEon2011.build(&p).unwrap();
+    let model = build_model(ModelId::DEon2011, &p).unwrap();
     let total = |imgs: [LatLongImage; 5]| cuticle_validate::sheet::total(&imgs);
     let sim = sample_histogram(model.as_ref(), 0.5, grid, 1_000_000);
-    let same = total(lobes(ModelKind::DEon2011, 0.08, grid));
-    let rougher = total(lobes(ModelKind::DEon2011, 0.16, grid));
+    let same = total(lobes(ModelId::DEon2011, 0.08, grid));
+    let rougher = total(lobes(ModelId::DEon2011, 0.16, grid));
     let e_same = lobe_figures(&same, &sim).relative_l1.unwrap();
     let e_rough = lobe_figures(&rougher, &sim).relative_l1.unwrap();
     assert!(

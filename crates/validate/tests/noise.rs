@@ -5,7 +5,7 @@
 use cuticle_fiber::{FiberParams, LatLongGrid, LatLongImage};
 use cuticle_validate::compare::{figures_of, with_noise};
 use cuticle_validate::noise::{mean_of, seed_to_seed_l1};
-use cuticle_validate::{ModelKind, PixelRule, integrate_lobes, lobe_figures};
+use cuticle_validate::{ModelId, PixelRule, build_model, integrate_lobes, lobe_figures};
 use glam::DVec3;
 
 /// Deterministic normal deviates (a 64-bit LCG and Box–Muller).
@@ -50,7 +50,7 @@ fn the_floor_is_what_the_truth_scores_and_the_residual_recovers_a_known_error() 
         alpha: (-2.0f64).to_radians(),
         mu_a: DVec3::splat(0.2),
     };
-    let model = ModelKind::DEon2011.build(&params).unwrap();
+    let model = build_model(ModelId::DEon2011, &params).unwrap();
     let rule = PixelRule::for_fiber(params.eta, params.alpha, params.beta);
     let truth = integrate_lobes(model.as_ref(), 0.6, LatLongGrid::default(), &rule);
     let mut rng = Normal(11);
@@ -59,7 +59,7 @@ fn the_floor_is_what_the_truth_scores_and_the_residual_recovers_a_known_error() 
     let (a, b) = (noisy(&truth, k, &mut rng), noisy(&truth, k, &mut rng));
     let reference = mean_of(&a, &b);
     let s2s = seed_to_seed_l1(&a, &b);
-    let perfect = with_noise(figures_of(ModelKind::DEon2011, &truth, &reference), &s2s);
+    let perfect = with_noise(figures_of(ModelId::DEon2011, &truth, &reference), &s2s);
     // Models 20 % and 5 % too bright everywhere: relative L1 0.2 and 0.05 against the truth,
     // an error far above the floor and one at it.
     let brighter = |k: f64| -> [LatLongImage; 5] {
@@ -84,7 +84,7 @@ fn the_floor_is_what_the_truth_scores_and_the_residual_recovers_a_known_error() 
             let model = brighter(k);
             let truth_l1 = lobe_figures(&model[p], &truth[p]).relative_l1.unwrap();
             assert!((truth_l1 - k).abs() < 1e-9);
-            let g = with_noise(figures_of(ModelKind::DEon2011, &model, &reference), &s2s).lobes[p];
+            let g = with_noise(figures_of(ModelId::DEon2011, &model, &reference), &s2s).lobes[p];
             let (l1, residual) = (g.relative_l1.unwrap(), g.residual_l1().unwrap());
             println!(
                 "lobe {p}: seed-to-seed {:.4}, floor {floor:.4}, truth scores {scored:.4}; \

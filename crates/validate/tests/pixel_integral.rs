@@ -5,7 +5,7 @@
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
 use cuticle_fiber::lobe::channel_mean;
 use cuticle_fiber::{FiberParams, LatLongGrid, Lobe};
-use cuticle_validate::{ModelKind, PixelRule, integrate_lobes};
+use cuticle_validate::{ModelId, PixelRule, build_model, integrate_lobes};
 use glam::DVec3;
 
 const REL_TOL: f64 = 3e-3;
@@ -22,12 +22,12 @@ fn fiber(beta: f64, alpha_deg: f64) -> FiberParams {
 
 /// Largest |image energy − furnace energy| beyond tolerance, per lobe, as (lobe, image, furnace).
 fn energy_mismatches(
-    kind: ModelKind,
+    kind: ModelId,
     params: &FiberParams,
     theta_i: f64,
     rule: &PixelRule,
 ) -> Vec<(Lobe, f64, f64)> {
-    let model = kind.build(params).unwrap();
+    let model = build_model(kind, params).unwrap();
     let images = integrate_lobes(model.as_ref(), theta_i, LatLongGrid::default(), rule);
     let reference = albedo(
         model.as_ref(),
@@ -53,7 +53,13 @@ fn energy_mismatches(
 
 #[test]
 fn pixel_integral_conserves_energy() {
-    for kind in ModelKind::ALL {
+    // The models this test was written for; Chiang 2016 has its own furnace tests.
+    for kind in [
+        ModelId::NonSeparable,
+        ModelId::NonSeparablePaper,
+        ModelId::DEon2011,
+        ModelId::Marschner,
+    ] {
         for (beta, alpha_deg, theta_i) in [(0.02, 4.0, 0.25), (0.02, -4.0, 1.1), (0.08, 2.0, 0.75)]
         {
             let p = fiber(beta, alpha_deg);
@@ -71,7 +77,7 @@ fn pixel_integral_conserves_energy() {
 #[test]
 fn centre_sampling_does_not_conserve_narrow_lobes() {
     let p = fiber(0.02, 0.0);
-    let bad = energy_mismatches(ModelKind::DEon2011, &p, 0.25, &PixelRule::centre());
+    let bad = energy_mismatches(ModelId::DEon2011, &p, 0.25, &PixelRule::centre());
     assert!(
         !bad.is_empty(),
         "point sampling happened to conserve energy: the test above proves nothing"

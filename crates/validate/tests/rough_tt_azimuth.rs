@@ -1,7 +1,7 @@
 //! TT near its edge (docs/validation.md, departures 20 and 21): where the
 //! smooth path is blocked or grazes, the light a rough surface lets through leaves at a Φ(1, h)
 //! that keeps moving smoothly with h and spreads over several times β/√2 in φ. The tilted
-//! model's N_TT takes both per offset from `cuticle_fiber::rough_deflection`; the paper's
+//! model's N_TT takes both per offset from `cuticle_fiber::models::nonseparable::rough::deflection`; the paper's
 //! smooth Φ(1, h) with the single variance β²/2 (the tilted model's N_TT before) piles the
 //! edge offsets' light into too few columns.
 //!
@@ -19,7 +19,8 @@ mod common;
 
 use common::{ETA, model, model_images, simulated};
 use cuticle_fiber::LatLongGrid;
-use cuticle_fiber::azimuthal::{AzimuthalScattering, Weighting};
+use cuticle_fiber::models::deon2011::azimuthal::{AzimuthalScattering, Weighting};
+use cuticle_fiber::models::nonseparable::cuticle::WithScales;
 use cuticle_validate::moments::column_moments;
 use glam::DVec3;
 

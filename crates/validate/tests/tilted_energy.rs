@@ -17,8 +17,8 @@
 //! The rule is checked against `furnace::albedo` at β = 0.02 in `integration_matches_the_furnace`.
 
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
-use cuticle_fiber::nonseparable::NonSeparable;
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
+use cuticle_fiber::models::nonseparable::NonSeparable;
 use cuticle_fiber::{FiberAngles, FiberModel, FiberParams, LatLongGrid};
 use cuticle_sim::{SimParams, simulate};
 use glam::DVec3;

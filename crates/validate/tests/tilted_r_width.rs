@@ -12,7 +12,7 @@
 mod common;
 
 use common::{model, model_images, simulated};
-use cuticle_fiber::tilted_mirror::{MirrorOffset, tilted_mirror_offset};
+use cuticle_fiber::models::nonseparable::scales::mirror::{MirrorOffset, tilted_mirror_offset};
 use cuticle_fiber::{LatLongGrid, LatLongImage};
 use cuticle_sim::SimResult;
 use std::ops::RangeInclusive;

@@ -14,7 +14,7 @@ mod common;
 
 use common::{model, model_images, simulated};
 use cuticle_fiber::LatLongGrid;
-use cuticle_fiber::longitudinal::LongitudinalLobe;
+use cuticle_fiber::lobes::longitudinal::LongitudinalLobe;
 use cuticle_validate::moments::column_moments;
 use std::f64::consts::FRAC_PI_2;
 

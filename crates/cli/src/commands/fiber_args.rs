@@ -3,9 +3,8 @@
 
 use anyhow::{Context, Result};
 use cuticle_fiber::absorption::mu_a_from_melanin;
-use cuticle_fiber::nonseparable::Scales;
 use cuticle_fiber::ranges::{self, CountRange};
-use cuticle_fiber::{DEon2011, FiberModel, FiberParams, Marschner2003, NonSeparable};
+use cuticle_fiber::{BuildOptions, FiberModel, FiberParams, ModelId, Tabulation};
 use glam::DVec3;
 use serde_json::{Value, json};
 
@@ -16,26 +15,11 @@ pub const ITERATIONS: CountRange = CountRange {
     max: 1000,
 };
 
-/// The models `--model` selects.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum ModelName {
-    Marschner,
-    Deon2011,
-    /// The non-separable model with what tilted scales and a rough surface do (the project's).
-    Nonseparable,
-    /// The non-separable model as d'Eon et al. 2014 specifies it.
-    NonseparablePaper,
-}
-
-impl ModelName {
-    pub fn as_str(self) -> &'static str {
-        match self {
-            ModelName::Marschner => "marschner",
-            ModelName::Deon2011 => "deon2011",
-            ModelName::Nonseparable => "nonseparable",
-            ModelName::NonseparablePaper => "nonseparable-paper",
-        }
-    }
+/// `--model`'s parser: the fiber crate's registry of models, its names listed in `--help`.
+pub fn model_parser() -> impl clap::builder::TypedValueParser<Value = ModelId> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(ModelId::names())
+        .map(|name| name.parse::<ModelId>().expect("a name of the registry"))
 }
 
 /// The absorption μ_a the flags give: `--mu-a`, else melanin (`--eumelanin`, `--pheomelanin`,
@@ -67,8 +51,8 @@ pub fn absorption(
 #[derive(clap::Args, Clone, Debug)]
 pub struct FiberArgs {
     /// Fiber model.
-    #[arg(long, value_enum, default_value_t = ModelName::Nonseparable)]
-    pub model: ModelName,
+    #[arg(long, value_parser = model_parser(), default_value = "nonseparable")]
+    pub model: ModelId,
     /// Longitudinal roughness β (Beckmann, as the simulator uses it), in (0, 1].
     #[arg(long, default_value_t = 0.04, allow_negative_numbers = true)]
     pub beta: f64,
@@ -120,37 +104,18 @@ impl FiberArgs {
     /// The model `--model` names, built from [`FiberArgs::params`].
     pub fn model(&self) -> Result<Box<dyn FiberModel>> {
         let params = self.params()?;
+        let options = BuildOptions {
+            tabulation: match self.direct {
+                true => Tabulation::Direct,
+                false => Tabulation::Tabulated,
+            },
+            iterations: self.iterations,
+            beta_n: None,
+        };
+        let model = self.model.build(&params, &options);
         Ok(match self.model {
-            ModelName::Deon2011 => {
-                let model = DEon2011::new(params)?;
-                Box::new(if self.direct {
-                    model
-                } else {
-                    model.tabulated()
-                })
-            }
-            ModelName::Nonseparable | ModelName::NonseparablePaper => {
-                let scales = match self.model {
-                    ModelName::NonseparablePaper => Scales::Paper,
-                    _ => Scales::Tilted,
-                };
-                let model =
-                    NonSeparable::with_scales(params, scales)?.with_iterations(self.iterations);
-                Box::new(if self.direct {
-                    model
-                } else {
-                    model.tabulated()
-                })
-            }
-            ModelName::Marschner => {
-                let model =
-                    Marschner2003::from_fiber(&params).context("Marschner 2003 parameters")?;
-                Box::new(if self.direct {
-                    model
-                } else {
-                    model.tabulated()
-                })
-            }
+            ModelId::Marschner => model.context("Marschner 2003 parameters")?,
+            _ => model?,
         })
     }
 
@@ -158,7 +123,7 @@ impl FiberArgs {
     pub fn json(&self, theta_i: Option<f64>) -> Result<Value> {
         let p = self.params()?;
         let mut v = json!({
-            "model": self.model.as_str(),
+            "model": self.model.name(),
             "beta": p.beta,
             "eta": p.eta,
             "alpha_deg": self.alpha_deg,

@@ -3,14 +3,16 @@
 //! model's A(p, h) says it must have: 1 for a lossless fiber, less with absorption, and less
 //! for the tilted non-separable model by what its tilted scales remove (issue 14).
 
-use crate::commands::fiber_args::{FiberArgs, ModelName};
+use crate::commands::fiber_args::FiberArgs;
 use crate::output::OutDir;
 use anyhow::{Result, bail};
-use cuticle_fiber::NonSeparable;
 use cuticle_fiber::furnace::{FurnaceRule, albedo};
 use cuticle_fiber::lobe::channel_mean;
+use cuticle_fiber::models::nonseparable::scales::attenuation::{
+    Surface, TiltedAttenuation, energy_budget,
+};
 use cuticle_fiber::ranges;
-use cuticle_fiber::tilted_attenuation::{Surface, TiltedAttenuation, energy_budget};
+use cuticle_fiber::{ModelId, NonSeparable};
 use rayon::prelude::*;
 use serde_json::json;
 use std::path::PathBuf;
@@ -128,14 +130,14 @@ pub fn run(args: Args) -> Result<()> {
 
 /// ½ ∫ Σ_p A(p, h) dh and the losses for the models built on A(p, h): d'Eon 2011 and the
 /// paper's non-separable form on the smooth untilted fiber's, the tilted form its own (tilted
-/// scales, rough Fresnel factors); none for Marschner 2003 (its own attenuation, with no
-/// stated budget).
+/// scales, rough Fresnel factors); none for Marschner 2003 and Chiang 2016 (their own
+/// attenuation, with no stated budget).
 fn budget(fiber: &FiberArgs, theta_i: f64) -> Option<TiltedAttenuation> {
     let p = fiber.params().ok()?;
     match fiber.model {
-        ModelName::Marschner => None,
-        ModelName::Nonseparable => Some(NonSeparable::new(p).ok()?.energy_budget(theta_i)),
-        ModelName::Deon2011 | ModelName::NonseparablePaper => {
+        ModelId::Marschner | ModelId::Chiang2016 => None,
+        ModelId::NonSeparable => Some(NonSeparable::new(p).ok()?.energy_budget(theta_i)),
+        ModelId::DEon2011 | ModelId::NonSeparablePaper => {
             Some(energy_budget(theta_i, Surface::smooth(p.eta, 0.0), p.mu_a))
         }
     }

@@ -7,13 +7,13 @@
 //! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
 //! Chiang 2016) for every strand.
 
-use crate::commands::fiber_args::absorption;
+use crate::commands::fiber_args::{absorption, model_parser};
 use crate::commands::render::check_finite;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
 use cuticle_fiber::ranges::{BETA, CountRange};
-use cuticle_fiber::{Chiang2016, DEon2011, FiberModel, FiberParams, NonSeparable};
+use cuticle_fiber::{BuildOptions, FiberModel, FiberParams, ModelId};
 use cuticle_light::ToneMap;
 use cuticle_render::{Image, Scene, SceneSpec};
 use cuticle_trace::{Accel, PathOptions, StrandModels, Strategy, TraceImage, TraceOptions};
@@ -21,15 +21,6 @@ use glam::DVec3;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// The models `--model` selects for the path tracer.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum TraceModel {
-    Marschner,
-    Deon2011,
-    Nonseparable,
-    Chiang2016,
-}
 
 /// The path tracer's flags of `cuticle render` (used with `--method path`).
 #[derive(clap::Args, Clone, Debug)]
@@ -44,8 +35,8 @@ pub struct PathArgs {
     #[arg(long, default_value_t = 64)]
     pub max_depth: u32,
     /// Fiber model of the path tracer; marschner takes the scene's hair parameters.
-    #[arg(long, value_enum, default_value_t = TraceModel::Marschner)]
-    pub model: TraceModel,
+    #[arg(long, value_parser = model_parser(), default_value = "marschner")]
+    pub model: ModelId,
     /// Longitudinal roughness β of d'Eon 2011 / non-separable (Beckmann), in (0, 1]
     /// [default: 0.04].
     #[arg(long, allow_negative_numbers = true)]
@@ -100,11 +91,11 @@ impl PathArgs {
     /// The first fiber flag given that `model` does not take.
     fn unused_flag(&self) -> Option<&'static str> {
         let takes: &[&str] = match self.model {
-            TraceModel::Marschner => &[],
-            TraceModel::Deon2011 | TraceModel::Nonseparable => {
+            ModelId::Marschner => &[],
+            ModelId::DEon2011 | ModelId::NonSeparable | ModelId::NonSeparablePaper => {
                 &["--beta", "--alpha-deg", "--eumelanin", "--pheomelanin"]
             }
-            TraceModel::Chiang2016 => &[
+            ModelId::Chiang2016 => &[
                 "--alpha-deg",
                 "--eumelanin",
                 "--pheomelanin",
@@ -120,7 +111,7 @@ impl PathArgs {
 
     /// Refuses the path tracer's flags on a render by another method, which would ignore them.
     pub fn check_unused(&self, method: &str) -> Result<()> {
-        let flag = if self.model != TraceModel::Marschner {
+        let flag = if self.model != ModelId::Marschner {
             Some("--model")
         } else {
             self.given().into_iter().find(|(_, g)| *g).map(|(f, _)| f)
@@ -166,18 +157,18 @@ impl PathArgs {
 
     /// The model's flags checked against the scene's hair before anything is loaded.
     fn check(&self, spec: &SceneSpec) -> Result<()> {
-        let model = format!("{:?}", self.model).to_lowercase();
+        let model = self.model.name();
         if let Some(flag) = self.unused_flag() {
             bail!(
                 "{flag} does not apply to --model {model}{}",
-                if self.model == TraceModel::Marschner {
+                if self.model == ModelId::Marschner {
                     " (it takes the scene's hair parameters: --mu-a, --eta, ...)"
                 } else {
                     ""
                 }
             );
         }
-        if self.model != TraceModel::Marschner
+        if self.model != ModelId::Marschner
             && let Some(sidecar) = &spec.strand_absorption
         {
             // Only Marschner 2003 takes a strand's own absorption (StrandModels::marschner).
@@ -187,8 +178,8 @@ impl PathArgs {
             );
         }
         match self.model {
-            TraceModel::Marschner => Ok(()),
-            TraceModel::Chiang2016 => {
+            ModelId::Marschner => Ok(()),
+            ModelId::Chiang2016 => {
                 self.fiber(spec, BETA.named("beta_m").check(self.beta_m())?)?;
                 BETA.named("beta_n").check(self.beta_n())?;
                 Ok(())
@@ -200,27 +191,29 @@ impl PathArgs {
     fn models(&self, scene: &Scene) -> Result<StrandModels> {
         let strands = scene.groom.strand_count();
         let one = |m: Box<dyn FiberModel>| Ok(StrandModels::uniform(m, strands));
-        match self.model {
-            TraceModel::Marschner => {
-                StrandModels::marschner(scene).context("Marschner 2003 parameters")
+        let (beta, beta_n) = match self.model {
+            ModelId::Marschner => {
+                return StrandModels::marschner(scene).context("Marschner 2003 parameters");
             }
-            TraceModel::Deon2011 => one(Box::new(
-                DEon2011::new(self.fiber(&scene.spec, self.beta())?)?.tabulated(),
-            )),
-            TraceModel::Nonseparable => one(Box::new(
-                NonSeparable::new(self.fiber(&scene.spec, self.beta())?)?.tabulated(),
-            )),
-            TraceModel::Chiang2016 => one(Box::new(Chiang2016::new(
-                self.fiber(&scene.spec, BETA.named("beta_m").check(self.beta_m())?)?,
-                self.beta_n(),
-            )?)),
-        }
+            ModelId::Chiang2016 => (
+                BETA.named("beta_m").check(self.beta_m())?,
+                Some(self.beta_n()),
+            ),
+            _ => (self.beta(), None),
+        };
+        let options = BuildOptions {
+            beta_n,
+            ..BuildOptions::default()
+        };
+        one(self
+            .model
+            .build(&self.fiber(&scene.spec, beta)?, &options)?)
     }
 
     fn json(&self, scene: &Scene) -> Result<Value> {
         let fiber = match self.model {
-            TraceModel::Marschner => Value::Null,
-            TraceModel::Chiang2016 => {
+            ModelId::Marschner => Value::Null,
+            ModelId::Chiang2016 => {
                 let p = self.fiber(&scene.spec, self.beta_m())?;
                 json!({"beta_m": self.beta_m(), "beta_n": self.beta_n(), "alpha_deg": self.alpha_deg(), "eta": p.eta, "mu_a": p.mu_a.to_array()})
             }
@@ -230,7 +223,7 @@ impl PathArgs {
             }
         };
         Ok(json!({
-            "model": format!("{:?}", self.model).to_lowercase(),
+            "model": self.model.name(),
             "spp": self.spp,
             "seed": self.seed,
             "max_depth": self.max_depth,

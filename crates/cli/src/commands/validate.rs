@@ -23,7 +23,7 @@ use cuticle_validate::sheet::{abs_difference, stack, total};
 use cuticle_validate::summary::{mean_median, non_finite};
 use cuticle_validate::sweep_dir::FILES;
 use cuticle_validate::sweep_dir::fiber_order;
-use cuticle_validate::{ModelKind, Row, SimConfig, csv, images_of, list_configs, markdown};
+use cuticle_validate::{ModelId, Row, SimConfig, csv, images_of, list_configs, markdown};
 use serde_json::json;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -63,7 +63,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    let models = ModelKind::parse_list(&args.models)?;
+    let models = cuticle_validate::parse_models(&args.models)?;
     ranges::SAMPLES
         .named("sheet_samples")
         .check(args.sheet_samples)?;
@@ -271,21 +271,21 @@ fn write_sheet(
     out: &mut OutDir,
     config: &SimConfig,
     sim: &[LatLongImage; 5],
-    rendered: &[(ModelKind, [LatLongImage; 5])],
+    rendered: &[(ModelId, [LatLongImage; 5])],
     fiber_models: &mut FiberModels,
     args: &Args,
 ) -> Result<()> {
-    let find = |k: ModelKind| {
+    let find = |k: ModelId| {
         rendered
             .iter()
             .find(|(m, _)| *m == k)
             .map(|(_, i)| total(i))
     };
-    let Some(evaluated) = find(ModelKind::NonSeparable) else {
+    let Some(evaluated) = find(ModelId::NonSeparable) else {
         return Ok(());
     };
     let sim_total = total(sim);
-    let model = fiber_models.get(ModelKind::NonSeparable, &config.fiber_params())?;
+    let model = fiber_models.get(ModelId::NonSeparable, &config.fiber_params())?;
     let sampled = crate::commands::lobes::sample_histogram(
         model,
         FiberAngles::new(config.theta_i, 0.0),
@@ -296,7 +296,7 @@ fn write_sheet(
     .image;
     let difference = abs_difference(&evaluated, &sim_total);
     let mut panels = vec![&sim_total, &sampled, &evaluated, &difference];
-    let deon = find(ModelKind::DEon2011);
+    let deon = find(ModelId::DEon2011);
     panels.extend(deon.as_ref());
     let png = png_bytes_with_white(&stack(&panels), white_point(&sim_total))?;
     out.write(&format!("sheets/{}.png", config.name), &png)?;
@@ -309,7 +309,7 @@ fn error_plot(rows: &[Row]) -> String {
     thetas.sort_by(f64::total_cmp);
     thetas.dedup();
     const COLORS: [&str; 4] = ["#1f77b4", "#ff7f0e", "#d62728", "#2ca02c"];
-    let names: Vec<&'static str> = ModelKind::ALL
+    let names: Vec<&'static str> = ModelId::ALL
         .iter()
         .map(|m| m.name())
         .filter(|n| rows.iter().any(|r| r.model == *n))
@@ -360,7 +360,7 @@ fn record(args: &Args, configs: &[SimConfig], rows: &[Row], seconds: f64) -> ser
 fn summary_json(rows: &[Row]) -> serde_json::Value {
     use cuticle_validate::summary::{counted_floor, counted_l1, counted_residual};
     let mut out = serde_json::Map::new();
-    for kind in ModelKind::ALL {
+    for kind in ModelId::ALL {
         let mut lobes = serde_json::Map::new();
         for lobe in Lobe::ALL {
             let of = || {
@@ -407,7 +407,7 @@ fn print_summary(rows: &[Row], n: usize, seconds: f64, args: &Args) {
         };
         let mut parts = Vec::new();
         if noise {
-            let any = of(ModelKind::ALL[0].name());
+            let any = of(ModelId::ALL[0].name());
             let floor = median(any.iter().map(|r| counted_floor(r)).collect());
             parts.push(format!(
                 "seed-to-seed {} floor {}",
@@ -415,7 +415,7 @@ fn print_summary(rows: &[Row], n: usize, seconds: f64, args: &Args) {
                 fmt(floor)
             ));
         }
-        for kind in ModelKind::ALL {
+        for kind in ModelId::ALL {
             let sel = of(kind.name());
             if sel.is_empty() {
                 continue;

@@ -3,7 +3,7 @@
 //! (instruction counts), so both measure the same calls.
 use cuticle_fiber::FiberAngles;
 use cuticle_fiber::FiberParams;
-use cuticle_fiber::absorption::mu_a_from_melanin;
+use cuticle_fiber::optics::absorption::mu_a_from_melanin;
 
 /// One call's inputs: ω_i, ω_o and four uniform numbers for sampling.
 pub type Case = (FiberAngles, FiberAngles, [f64; 4]);

@@ -94,7 +94,7 @@ impl AbsorptionEdit {
                 pheomelanin: p as f32,
             }),
             Self::Colour(c) => {
-                let m = cuticle_fiber::absorption::mu_a_from_color(
+                let m = cuticle_fiber::optics::absorption::mu_a_from_color(
                     glam::Vec3::from_array(c).as_dvec3(),
                     COLOUR_BETA_N,
                 );

@@ -221,7 +221,7 @@ fn absorption_editor(
         }
         AbsorptionEdit::Melanin(m) => {
             // The largest concentration whose μ_a stays inside the validated range.
-            let max = HairParams::MU_A.max / cuticle_fiber::absorption::EUMELANIN_SIGMA_A.z;
+            let max = HairParams::MU_A.max / cuticle_fiber::optics::absorption::EUMELANIN_SIGMA_A.z;
             let r = 0.0..=max;
             changed |= ui
                 .add(
