@@ -2,36 +2,11 @@
 //! each edit's re-render runs exactly the stages that edit needs (a hair edit neither draws nor
 //! casts shadows, a camera move does), and each edit changes only what it names.
 
-use cuticle_groom::procedural::{GroomParams, Preset, generate};
-use cuticle_light::{EnvMap, SrbfLight, evaluate_lights};
-use cuticle_render::bench::{self, BenchReport, Edit};
-use cuticle_render::{Renderer, Scene, SceneSpec, ShadowOptions};
-use glam::Vec3;
+mod common;
 
-fn tiny_scene() -> Scene {
-    let lights = vec![
-        SrbfLight::new(Vec3::new(0.6, 0.5, -0.6), 0.35, Vec3::new(6.0, 5.0, 4.0)),
-        SrbfLight::new(Vec3::new(0.0, 1.0, 0.0), 1.2, Vec3::new(0.4, 0.5, 0.8)),
-    ];
-    let env = EnvMap::from_fn(64, 32, |d| evaluate_lights(&lights, d).as_vec3());
-    let groom = generate(&GroomParams {
-        strands: 200,
-        ..Preset::Straight.params()
-    })
-    .unwrap();
-    let spec = SceneSpec {
-        width: 48,
-        height: 32,
-        supersampling: 2,
-        multiple: true,
-        shadows: ShadowOptions {
-            resolution: 32,
-            ..ShadowOptions::default()
-        },
-        ..SceneSpec::default()
-    };
-    Scene::from_parts(spec, groom, env, lights)
-}
+use common::tiny_scene;
+use cuticle_render::Renderer;
+use cuticle_render::bench::{self, BenchReport, Edit};
 
 fn stages(report: &BenchReport) -> Vec<f64> {
     let f = &report.full;

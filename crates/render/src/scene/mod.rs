@@ -16,8 +16,8 @@ use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
 use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
 use cuticle_light::{
-    EnvMap, FitCache, FitOptions, FitSource, MAX_LIGHTS, MAX_RADIANCE, SrbfLight,
-    fit_srbf_cached, load_or_default,
+    EnvMap, FitCache, FitOptions, FitSource, MAX_LIGHTS, MAX_RADIANCE, SrbfLight, fit_srbf_cached,
+    load_or_default,
 };
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Deserializer, Serialize};

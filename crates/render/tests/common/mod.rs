@@ -1,11 +1,14 @@
 //! Helpers shared by the renderer's integration tests.
 
+use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::{Groom, GroomParts};
-use cuticle_render::Renderer;
+use cuticle_light::{EnvMap, SrbfLight, evaluate_lights};
+use cuticle_render::{Renderer, Scene, SceneSpec, ShadowOptions};
 use glam::Vec3;
 use std::sync::OnceLock;
 
 /// One renderer (its parameter-independent tables) for every test in a binary.
+#[allow(dead_code)] // not every test binary uses it
 pub fn renderer() -> &'static Renderer {
     static R: OnceLock<Renderer> = OnceLock::new();
     R.get_or_init(Renderer::new)
@@ -42,4 +45,32 @@ pub fn block() -> Groom {
         ..GroomParts::default()
     })
     .unwrap()
+}
+
+/// A tiny scene of the default groom's kind: 200 strands, 48 × 32 at 2 × 2 subsamples, a key
+/// light and a wide sky light (so sub-lights are split), 32-texel opacity maps.
+#[allow(dead_code)] // not every test binary uses it
+pub fn tiny_scene() -> Scene {
+    let lights = vec![
+        SrbfLight::new(Vec3::new(0.6, 0.5, -0.6), 0.35, Vec3::new(6.0, 5.0, 4.0)),
+        SrbfLight::new(Vec3::new(0.0, 1.0, 0.0), 1.2, Vec3::new(0.4, 0.5, 0.8)),
+    ];
+    let env = EnvMap::from_fn(64, 32, |d| evaluate_lights(&lights, d).as_vec3());
+    let groom = generate(&GroomParams {
+        strands: 200,
+        ..Preset::Straight.params()
+    })
+    .unwrap();
+    let spec = SceneSpec {
+        width: 48,
+        height: 32,
+        supersampling: 2,
+        multiple: true,
+        shadows: ShadowOptions {
+            resolution: 32,
+            ..ShadowOptions::default()
+        },
+        ..SceneSpec::default()
+    };
+    Scene::from_parts(spec, groom, env, lights)
 }
