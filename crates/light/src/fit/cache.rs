@@ -103,7 +103,11 @@ impl FitCache {
             report: report.clone(),
         };
         let bytes = serde_json::to_vec(&entry).map_err(std::io::Error::other)?;
-        let temp = dir.join(format!(".{key}.{}.tmp", std::process::id()));
+        // Unique per process and per write, so that two threads storing one key never share
+        // a temporary file.
+        static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let temp = dir.join(format!(".{key}.{}.{n}.tmp", std::process::id()));
         let written = std::fs::write(&temp, bytes).and_then(|()| std::fs::rename(&temp, &path));
         if written.is_err() {
             let _ = std::fs::remove_file(&temp);
