@@ -32,7 +32,7 @@ const SHADOW_PER_POINT_AND_LIGHT: u64 = 12;
 const PER_TEXEL: u64 = 56;
 /// Bytes per point of one opacity map: the groom's points in the map's frame (its depth
 /// samples are generated, not stored).
-const MAP_SAMPLES_PER_POINT: u64 = 24;
+const MAP_PER_POINT: u64 = 24;
 /// The renderer's tables, the default environment and its fit, and everything else of fixed
 /// size (tests/memory.rs measures the peak against the whole estimate).
 const FIXED: u64 = 40 << 20;
@@ -152,7 +152,7 @@ pub fn frame_need(
     // Each covered subsample makes the two ends of one segment visible.
     let visible = points.min(m(subsamples, 2));
     let maps_at_once = threads.clamp(1, lights.max(1));
-    let per_map = m(texels, PER_TEXEL).saturating_add(m(points, MAP_SAMPLES_PER_POINT));
+    let per_map = m(texels, PER_TEXEL).saturating_add(m(points, MAP_PER_POINT));
     let fibers = std::mem::size_of::<MarschnerParams>() as u64;
     MemoryNeed {
         parts: vec![

@@ -61,12 +61,7 @@ pub fn eval(x: f64, mu: f64, lambda: f64) -> f64 {
 /// ∫_{−π}^{π} g^c(x; μ, λ) dx = 2π e^{−κ} I₀(κ) (exact; the paper's √π λ is its narrow limit).
 pub fn integral(lambda: f64) -> f64 {
     let kappa = sharpness(lambda);
-    // i0_times_exp(κ, −κ) without exp(κ − κ) = exp(0) = 1 on the large branch: the same bits.
-    if kappa <= I0_SWITCH {
-        2.0 * PI * (i0_small(kappa) * (-kappa).exp())
-    } else {
-        2.0 * PI * (i0_large(kappa) / kappa.sqrt())
-    }
+    2.0 * PI * i0_times_exp(kappa, -kappa)
 }
 
 /// ∫_{−π}^{π} g^c(x; 0, λ₁) g^c(δ − x; μ₂, λ₂) dx: the inner integral 𝒩 of an azimuthal lobe
