@@ -24,12 +24,14 @@
 //! - [`brute`]: the reference twins of [`srbf`]'s files, with matching names, from the exact
 //!   functions against the map as directional lights (`--method brute`).
 //! - [`preview`]: what a live window's quick first frame after an edit leaves out.
+//! - [`compare`]: two renders against each other over the hair (`cuticle compare`).
 //! - [`angles`], [`fresnel`]: the small fiber optics both paths share; [`mod@bench`]: the paper's
 //!   workload timed.
 
 pub mod angles;
 pub mod bench;
 pub mod brute;
+pub mod compare;
 pub mod frame;
 pub mod fresnel;
 pub mod preview;
