@@ -6,7 +6,6 @@
 
 use crate::buffers;
 use cuticle_groom::Groom;
-use cuticle_render::frame::fiber_frames::strand_of_points;
 
 /// The groom's buffers, and what was uploaded (to tell whether another groom is this one).
 pub struct GroomBuffers {
@@ -41,7 +40,7 @@ impl GroomBuffers {
             tangents: storage("tangents", bytemuck::cast_slice(&tangents)),
             strand_of_point: storage(
                 "strand of point",
-                bytemuck::cast_slice(&strand_of_points(groom)),
+                bytemuck::cast_slice(&groom.strand_of_points()),
             ),
             point_count: points.len(),
             segment_count: segments.len(),

@@ -27,7 +27,6 @@ mod common;
 use common::{gpu, load, spec};
 use cuticle_render::Scene;
 use cuticle_render::frame::draw::{Coverage, EMPTY, draw_strands};
-use cuticle_render::frame::fiber_frames::strand_of_points;
 use glam::DVec3;
 
 /// How two drawings of one groom differ.
@@ -83,7 +82,7 @@ fn compare(scene: &Scene, label: &str) -> Coverage {
         (got.width, got.height, got.ss),
         (want.width, want.height, want.ss)
     );
-    let strand = strand_of_points(&scene.groom);
+    let strand = scene.groom.strand_of_points();
     let d = difference(&got, &want, &strand);
     let points = gpu().visible_points(&frame);
     let cpu_points = want.visible_points(scene.groom.point_count());
@@ -202,7 +201,7 @@ fn drawing_matches_in_a_close_up_with_clipped_points() {
             .collect(),
         want.t.clone(),
     );
-    let d = difference(&shifted, &want, &strand_of_points(&scene.groom));
+    let d = difference(&shifted, &want, &scene.groom.strand_of_points());
     eprintln!(
         "one subsample to the side: {:.2e} show another strand",
         d.strand_share

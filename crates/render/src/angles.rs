@@ -1,7 +1,24 @@
-//! Small angle helpers shared by the shading code.
+//! The fiber frame at each point and small angle helpers shared by the shading code.
 
+use cuticle_fiber::FiberFrame;
 use cuticle_fiber::special::sin_cos_quadrant;
+use cuticle_groom::Groom;
+use glam::DVec3;
 use std::f64::consts::PI;
+
+/// The fiber frame at point `i` of `groom`: u the strand tangent, v the part of the outward
+/// direction from the origin (the head's centre in procedural grooms) normal to u, so that an
+/// elliptical fiber's axes (Xu et al. 2011 eq. 24, through φ_h) keep one orientation relative
+/// to the scalp.
+pub fn fiber_frame_at(groom: &Groom, i: usize) -> FiberFrame {
+    let t = groom.tangents()[i].as_dvec3();
+    let tangent = if t.length_squared() > 1e-20 {
+        t
+    } else {
+        DVec3::Z
+    };
+    FiberFrame::from_tangent(tangent, groom.positions()[i].as_dvec3())
+}
 
 /// Wraps an angle to (−π, π].
 pub fn wrap_pi(x: f64) -> f64 {

@@ -27,7 +27,6 @@ use crate::buffers;
 use crate::groom::GroomBuffers;
 use bytemuck::{Pod, Zeroable};
 use cuticle_groom::Groom;
-use cuticle_render::frame::fiber_frames::strand_of_points;
 use cuticle_render::scene::camera::{NEAR, View};
 use scan::{Scan, ScanPipelines};
 
@@ -153,7 +152,7 @@ impl Drawing {
         let ss = inputs.ss.max(1);
         let (sw, sh) = (inputs.width * ss, inputs.height * ss);
         let (point_count, segment_count) = (groom_buffers.point_count, groom_buffers.segment_count);
-        let strand_of_point = strand_of_points(groom);
+        let strand_of_point = groom.strand_of_points();
         let view = inputs.view;
         let eye_hi = view.eye.as_vec3();
         let params = DrawParams {

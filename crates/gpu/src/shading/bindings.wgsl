@@ -4,6 +4,10 @@
 const PI: f32 = 3.14159265358979;
 const HALF_PI: f32 = 1.57079632679490;
 const SQRT_2: f32 = 1.41421356237310;
+// The lobes by name (the fiber crate's Lobe::{R, TT, TRT}: Lobe::index).
+const LOBE_R: u32 = 0u;
+const LOBE_TT: u32 = 1u;
+const LOBE_TRT: u32 = 2u;
 
 // shading/mod.rs's GridDesc.
 struct Grid {

@@ -92,10 +92,10 @@ fn global_term(theta_o: f32, theta_j: f32, sigma_f: f32, delta: f32) -> vec3<f32
     it.half_w = half_cosines(delta);
     let o = outgoing(theta_o);
     var sum = vec3<f32>(0.0);
-    for (var t = 0u; t < 3u; t++) {
-        let ab = longitudinal(t);
+    for (var lobe = LOBE_R; lobe <= LOBE_TRT; lobe++) {
+        let ab = longitudinal(lobe);
         let window = window_normal_product(theta_j, sigma_f, 2.0 * ab.x - theta_o, 2.0 * ab.y);
-        it.kind = KIND_GLOBAL_R + t;
+        it.kind = KIND_GLOBAL_R + lobe;
         sum += integrate_incident(window, params.m, o, it);
     }
     return sum;

@@ -180,13 +180,13 @@ pub fn workgroups(points: usize) -> (u32, u32) {
     (x, groups.div_ceil(x))
 }
 
-/// The scene's lobe mask as `ShadeParams::lobes`: bit t for lobe t of [R, TT, TRT].
+/// The scene's lobe mask as `ShadeParams::lobes`: bit `Lobe::index` for each of R, TT, TRT
+/// (WGSL's LOBE_R, LOBE_TT, LOBE_TRT).
 pub fn lobe_bits(lobes: cuticle_render::Lobes) -> u32 {
-    lobes
-        .mask()
+    cuticle_fiber::marschner2003::MarschnerParams::LOBES
         .iter()
-        .enumerate()
-        .map(|(t, &on)| u32::from(on) << t)
+        .zip(lobes.mask())
+        .map(|(lobe, on)| u32::from(on) << lobe.index())
         .sum()
 }
 

@@ -14,9 +14,9 @@ struct Integrand {
     half_w: array<f32, 7>,
 }
 
-const KIND_R: u32 = 0u;
-const KIND_TT: u32 = 1u;
-const KIND_TRT: u32 = 2u;
+const KIND_R: u32 = LOBE_R;
+const KIND_TT: u32 = LOBE_TT;
+const KIND_TRT: u32 = LOBE_TRT;
 const KIND_GLOBAL_R: u32 = 3u;
 const KIND_GLOBAL_TT: u32 = 4u;
 const KIND_GLOBAL_TRT: u32 = 5u;
@@ -53,14 +53,14 @@ fn integrand(it: Integrand, s: Incident) -> vec3<f32> {
 }
 
 // (α_p, β_p) of M_R, M_TT, M_TRT (Marschner 2003 Table 1).
-fn longitudinal(t: u32) -> vec2<f32> {
+fn longitudinal(lobe: u32) -> vec2<f32> {
     let a = params.alpha_r;
     let b = params.beta_r;
-    switch t {
-        case 0u: {
+    switch lobe {
+        case LOBE_R: {
             return vec2<f32>(a, b);
         }
-        case 1u: {
+        case LOBE_TT: {
             return vec2<f32>(-0.5 * a, 0.5 * b);
         }
         default: {
@@ -82,13 +82,13 @@ fn modes(theta_o: f32, phi_o: f32, theta_j: f32, phi_j: f32, bandwidth: f32, lob
     it.phi_sum = phi_o + phi_j;
     let o = outgoing(theta_o);
     var sum = vec3<f32>(0.0);
-    for (var t = 0u; t < 3u; t++) {
-        if ((lobes & (1u << t)) == 0u) {
+    for (var lobe = LOBE_R; lobe <= LOBE_TRT; lobe++) {
+        if ((lobes & (1u << lobe)) == 0u) {
             continue;
         }
-        let ab = longitudinal(t);
+        let ab = longitudinal(lobe);
         let window = window_product(theta_j, bandwidth, 2.0 * ab.x - theta_o, 2.0 * ab.y);
-        it.kind = t;
+        it.kind = KIND_R + lobe;
         sum += integrate_incident(window, params.m, o, it);
     }
     return sum;

@@ -136,6 +136,15 @@ impl Groom {
         offsets[i] as usize..offsets[i + 1] as usize
     }
 
+    /// The strand each point belongs to (the inverse of [`Self::strand_range`]).
+    pub fn strand_of_points(&self) -> Vec<u32> {
+        let mut out = vec![0u32; self.point_count()];
+        for s in 0..self.strand_count() {
+            out[self.strand_range(s)].fill(s as u32);
+        }
+        out
+    }
+
     /// A view of strand `i`.
     pub fn strand(&self, i: usize) -> Strand<'_> {
         let range = self.strand_range(i);

@@ -4,14 +4,14 @@
 //!    background;
 //! 3. shadows: T̃ of every light at every visible point, from deep opacity maps filtered to each
 //!    light's bandwidth ([`shadows`]);
-//! 4. shading: L_o at every visible point in its fiber frame ([`fiber_frames`]), by the SRBF
+//! 4. shading: L_o at every visible point in its fiber frame
+//!    ([`crate::angles::fiber_frame_at`]), by the SRBF
 //!    path ([`crate::srbf`]) or the brute force ([`crate::brute`]), with [`progress`];
 //!    A pass after an edit shades only the points whose inputs changed ([`reshade`]).
 //! 5. resolve: subsamples averaged into pixels; the [`Image`](renderer::Image) as files
 //!    ([`image_file`]).
 
 pub mod draw;
-pub mod fiber_frames;
 pub mod image_file;
 pub mod progress;
 pub mod renderer;

@@ -5,11 +5,11 @@
 //! 4. shading: L_o at every visible point (the only stage a hair-parameter edit re-runs);
 //! 5. resolve: subsamples averaged into pixels.
 
+use crate::angles::fiber_frame_at;
 use crate::brute::dual_scattering::BruteDual;
 use crate::brute::half_circle::ExactHalfCircle;
 use crate::brute::single_scattering::{self as brute, Directional};
 use crate::frame::draw::{Coverage, EMPTY, draw_strands};
-use crate::frame::fiber_frames::{frame_at, strand_of_points};
 use crate::frame::progress::{Counter, Progress};
 use crate::frame::reshade::{Shaded, SharedInputs, stale_points};
 use crate::frame::shadows::{ShadowOptions, transmittance};
@@ -254,7 +254,7 @@ impl Renderer {
             points,
             lights,
             shadow: Vec::new(),
-            strand_of_point: strand_of_points(&scene.groom),
+            strand_of_point: scene.groom.strand_of_points(),
         }
     }
 
@@ -379,7 +379,7 @@ impl Renderer {
                     let p = p as usize;
                     let point = ShadingPoint {
                         fiber: &fibers[prepared.strand_of_point[p] as usize],
-                        frame: frame_at(&scene.groom, p),
+                        fiber_frame: fiber_frame_at(&scene.groom, p),
                         toward_eye: (prepared.view.eye - scene.groom.positions()[p].as_dvec3())
                             .normalize(),
                         shadow: &prepared.shadow[k * nl..(k + 1) * nl],
@@ -479,7 +479,7 @@ impl Renderer {
 /// One visible point as shading reads it.
 struct ShadingPoint<'a> {
     fiber: &'a MarschnerParams,
-    frame: FiberFrame,
+    fiber_frame: FiberFrame,
     /// Unit vector from the point toward the eye.
     toward_eye: DVec3,
     /// T̃ of each light at the point.
@@ -513,10 +513,10 @@ impl SrbfFrame<'_> {
         point: &ShadingPoint,
         (local, lit): &mut (Vec<LocalLight>, Vec<LocalLight>),
     ) -> DVec3 {
-        let ao = point.frame.angles(point.toward_eye);
+        let ao = point.fiber_frame.angles(point.toward_eye);
         local.clear();
         local.extend(self.lights.iter().map(|l| {
-            let a = point.frame.angles(l.direction);
+            let a = point.fiber_frame.angles(l.direction);
             LocalLight {
                 theta: a.theta,
                 phi: a.phi,
@@ -567,8 +567,8 @@ impl BruteFrame<'_> {
     /// The exact model's single scattering from every directional light, plus dual scattering.
     fn shade(&self, point: &ShadingPoint) -> DVec3 {
         let model = Marschner2003::new(*point.fiber).expect("validated parameters");
-        let lights = brute::local_lights(&point.frame, &self.lights);
-        let ao = point.frame.angles(point.toward_eye);
+        let lights = brute::local_lights(&point.fiber_frame, &self.lights);
+        let ao = point.fiber_frame.angles(point.toward_eye);
         let single = brute::shade(&model, ao, &lights, point.shadow, self.shown);
         let multiple = self.dual.map_or(DVec3::ZERO, |d| {
             d.shade(point.fiber, ao, &lights, point.shadow)

@@ -42,6 +42,8 @@ use crate::tables::cg_integrals::{FresnelRow, Tables};
 use crate::tables::half_circle::HalfCircle;
 use crate::tables::lobe_table::AzimuthalLobes;
 use crate::tables::spread::SpreadNormalisation;
+use cuticle_fiber::Lobe;
+use cuticle_fiber::marschner2003::MarschnerParams;
 use cuticle_fiber::special::sin_cos_quadrant;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
@@ -189,16 +191,17 @@ impl Dual<'_> {
         let fresnel = self.tables.fresnel_row(eta);
         let lobes = fiber.params.longitudinal();
         let outgoing = Outgoing::new(theta_o);
-        (0..3)
-            .map(|t| {
-                let (alpha, beta) = lobes[t];
+        MarschnerParams::LOBES
+            .into_iter()
+            .map(|lobe| {
+                let (alpha, beta) = lobes[lobe.index()];
                 let window =
                     Window::normal_product(theta_j, sigma_f, 2.0 * alpha - theta_o, 2.0 * beta);
                 window.integrate_incident(self.m, &outgoing, |sample| {
                     let theta_d = sample.theta_d;
-                    match t {
-                        0 => DVec3::splat(r_half(self.tables, fresnel, theta_d, &w)),
-                        1 => {
+                    match lobe {
+                        Lobe::R => DVec3::splat(r_half(self.tables, fresnel, theta_d, &w)),
+                        Lobe::TT => {
                             let tt = fiber.lobes.tt(theta_d);
                             DVec3::from_array(std::array::from_fn(|c| {
                                 if tt.weight[c] == 0.0 {
@@ -212,6 +215,7 @@ impl Dual<'_> {
                                 tt.weight[c] * cg::integral(bandwidth) / PI * (near + far)
                             }))
                         }
+                        // TRT; Marschner 2003 has no further lobe.
                         _ => {
                             let trt = fiber.lobes.trt(eta, theta_d);
                             trt.weighted_sum(|s, bandwidth| {

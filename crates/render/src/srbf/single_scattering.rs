@@ -9,6 +9,7 @@ use crate::srbf::circular_gaussian::{convolve_sharp, sharpness};
 use crate::srbf::quadrature::Window;
 use crate::tables::cg_integrals::Tables;
 use crate::tables::lobe_table::{AzimuthalLobes, TrtLobes, TtLobes};
+use cuticle_fiber::Lobe;
 use cuticle_fiber::marschner2003::MarschnerParams;
 use cuticle_fiber::special::sin_cos_quadrant;
 use glam::DVec3;
@@ -88,8 +89,8 @@ pub fn modes<L: AzimuthalLobes>(
     let lobes = fiber.params.longitudinal();
     let outgoing = Outgoing::new(theta_o);
     let fresnel = tables.fresnel_row(fiber.params.eta);
-    std::array::from_fn(|t| {
-        let (alpha, beta) = lobes[t];
+    MarschnerParams::LOBES.map(|lobe| {
+        let (alpha, beta) = lobes[lobe.index()];
         let window = Window::product(
             light.theta,
             light.bandwidth,
@@ -99,9 +100,10 @@ pub fn modes<L: AzimuthalLobes>(
         window.integrate_incident(m, &outgoing, |s| {
             let Incident { cos_i, theta_d, .. } = *s;
             let lambda = light.bandwidth / (cos_i * cos_j).sqrt();
-            match t {
-                0 => DVec3::splat(r_convolved(tables, fresnel, theta_d, lambda, delta)),
-                1 => tt_convolved(&fiber.lobes.tt(theta_d), sharpness(lambda), &azimuth),
+            match lobe {
+                Lobe::R => DVec3::splat(r_convolved(tables, fresnel, theta_d, lambda, delta)),
+                Lobe::TT => tt_convolved(&fiber.lobes.tt(theta_d), sharpness(lambda), &azimuth),
+                // TRT; Marschner 2003 has no further lobe.
                 _ => {
                     let eta = mean_eta_star(tables, fiber.params, lambda, azimuth.phi_sum);
                     trt_convolved(&fiber.lobes.trt(eta, theta_d), sharpness(lambda), &azimuth)

@@ -1,5 +1,6 @@
 //! Marschner 2003 Table 1: the parameters, their defaults and their checks.
 
+use crate::lobe::Lobe;
 use crate::ranges::{self, RangeError};
 use glam::DVec3;
 
@@ -60,6 +61,9 @@ impl Default for MarschnerParams {
 pub type MarschnerError = RangeError;
 
 impl MarschnerParams {
+    /// The three lobes Marschner 2003 models, in the order of [`Self::longitudinal`].
+    pub const LOBES: [Lobe; 3] = [Lobe::R, Lobe::TT, Lobe::TRT];
+
     /// (α_p, β_p) of M_R, M_TT, M_TRT from α_R, β_R (Marschner 2003 Table 1: α_TT = −α_R/2,
     /// α_TRT = −3α_R/2, β_TT = β_R/2, β_TRT = 2β_R).
     pub fn longitudinal(&self) -> [(f64, f64); 3] {
