@@ -146,12 +146,11 @@ pub enum GroomError {
 /// Why procedural groom parameters were refused.
 #[derive(Debug, Error, PartialEq)]
 pub enum ParamsError {
-    #[error("{name} must be {rule}, got {value}")]
-    OutOfRange {
-        name: &'static str,
-        rule: &'static str,
-        value: f64,
-    },
+    #[error(transparent)]
+    Range(#[from] cuticle_range::RangeError),
+
+    #[error("appearance must be physical (β > 0, η > 1, absorption ≥ 0)")]
+    Unphysical,
 
     #[error("unknown preset {0:?}; the presets are straight, wavy and curly")]
     UnknownPreset(String),

@@ -4,6 +4,7 @@
 //! ∫_{S²} exp(k ω·μ) dω = 4π sinh(k)/k.
 
 use crate::EnvMap;
+use cuticle_range::{End, Range};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -16,9 +17,23 @@ pub const MAX_LIGHTS: usize = 512;
 pub const MIN_BANDWIDTH: f64 = 1e-4;
 /// The widest bandwidth: beyond 4 a light is constant over the sphere to within 12 %.
 pub const MAX_BANDWIDTH: f64 = 4.0;
+/// A light's bandwidth λ_j.
+pub const BANDWIDTH: Range = Range {
+    name: "bandwidth",
+    min: End::Closed(MIN_BANDWIDTH),
+    max: End::Closed(MAX_BANDWIDTH),
+    unit: "",
+};
 /// The largest coefficient (radiance at the centre): far beyond any measured sky (the sun is
 /// about 1e9 in W m⁻² sr⁻¹), and small enough that shading sums stay finite in f32 images.
 pub const MAX_COEFFICIENT: f64 = 1e20;
+/// Each channel of a light's coefficient L_j.
+pub const COEFFICIENT: Range = Range {
+    name: "coefficient",
+    min: End::Closed(0.0),
+    max: End::Closed(MAX_COEFFICIENT),
+    unit: "",
+};
 /// The brightest pixel a map may hold: the bound of a light's coefficient, so that what a fit
 /// of any readable map writes, a lights file reader reads (issue 57 #12: a map of 3e38 gave
 /// lights.json coefficients of 2e38 that `render --lights` refused).
@@ -54,24 +69,12 @@ impl SrbfLight {
         if !d.is_finite() || d.length() < 1e-6 {
             return Some(format!("direction {:?} is not a direction", d.to_array()));
         }
-        let b = self.bandwidth as f64;
-        if !(b.is_finite() && (MIN_BANDWIDTH..=MAX_BANDWIDTH).contains(&b)) {
-            return Some(format!(
-                "bandwidth {b:e} must be a finite number in [{MIN_BANDWIDTH:e}, {MAX_BANDWIDTH}]"
-            ));
-        }
-        let c = self.coefficient;
-        if !c
-            .to_array()
-            .iter()
-            .all(|&v| (v as f64).is_finite() && (0.0..=MAX_COEFFICIENT).contains(&(v as f64)))
-        {
-            return Some(format!(
-                "coefficient {:?} must be finite numbers in [0, {MAX_COEFFICIENT:e}]",
-                c.to_array()
-            ));
-        }
-        None
+        let channels = self.coefficient.to_array().map(f64::from);
+        BANDWIDTH
+            .check(self.bandwidth.into())
+            .and_then(|_| COEFFICIENT.check_all(&channels))
+            .err()
+            .map(|e| e.to_string())
     }
 
     /// A light centred on `direction` (normalised here).

@@ -19,7 +19,10 @@ mod random;
 mod styling;
 
 pub use head::Head;
-pub use params::{GroomParams, MAX_POINTS_PER_STRAND, MAX_STRANDS};
+pub use params::{
+    CLUMP_SIZE, CLUMPING, GroomParams, MAX_POINTS_PER_STRAND, MAX_STRANDS, MIN_POINTS,
+    NON_NEGATIVE, POSITIVE, STRANDS,
+};
 pub use preset::Preset;
 
 use crate::appearance::Appearance;

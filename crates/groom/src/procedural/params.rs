@@ -3,6 +3,7 @@
 use super::head::Head;
 use crate::appearance::Appearance;
 use crate::error::ParamsError;
+use cuticle_range::{CountRange, End, Range};
 use serde::{Deserialize, Serialize};
 
 /// Controls of a procedural groom. Lengths are in centimetres.
@@ -49,38 +50,55 @@ pub const MAX_STRANDS: usize = 2_000_000;
 /// Most points a procedural strand may have.
 pub const MAX_POINTS_PER_STRAND: usize = 1024;
 
+/// The counts' ranges ([`GroomParams::validate`]; `max_points` lies in min_points..=1024).
+pub const STRANDS: CountRange = CountRange {
+    name: "strands",
+    min: 0,
+    max: MAX_STRANDS as u64,
+};
+pub const MIN_POINTS: CountRange = CountRange {
+    name: "min_points",
+    min: 2,
+    max: MAX_POINTS_PER_STRAND as u64,
+};
+pub const CLUMP_SIZE: CountRange = CountRange {
+    name: "clump_size",
+    min: 1,
+    max: MAX_STRANDS as u64,
+};
+/// Lengths, thicknesses and radii (each under its own name).
+pub const POSITIVE: Range = Range {
+    name: "length",
+    min: End::Open(0.0),
+    max: End::Closed(f32::MAX as f64),
+    unit: "",
+};
+/// Variations, gravity, lift, volume and amplitudes (each under its own name).
+pub const NON_NEGATIVE: Range = Range {
+    name: "gravity",
+    min: End::Closed(0.0),
+    max: End::Closed(f32::MAX as f64),
+    unit: "",
+};
+pub const CLUMPING: Range = Range {
+    name: "clumping",
+    min: End::Closed(0.0),
+    max: End::Closed(1.0),
+    unit: "",
+};
+
 impl GroomParams {
     /// Checks every control is within its range.
     pub fn validate(&self) -> Result<(), ParamsError> {
-        let counts = [
-            (
-                "strands",
-                self.strands,
-                self.strands <= MAX_STRANDS,
-                "at most 2,000,000",
-            ),
-            (
-                "min_points",
-                self.min_points,
-                self.min_points >= 2,
-                "at least 2",
-            ),
-            (
-                "max_points",
-                self.max_points,
-                (self.min_points..=MAX_POINTS_PER_STRAND).contains(&self.max_points),
-                "between min_points and 1024",
-            ),
-            (
-                "clump_size",
-                self.clump_size,
-                self.clump_size >= 1,
-                "at least 1",
-            ),
-        ];
-        for (name, value, ok, rule) in counts {
-            require(name, value as f64, ok, rule)?;
-        }
+        STRANDS.check_usize(self.strands)?;
+        MIN_POINTS.check_usize(self.min_points)?;
+        let max_points = CountRange {
+            name: "max_points",
+            min: self.min_points as u64,
+            ..MIN_POINTS
+        };
+        max_points.check_usize(self.max_points)?;
+        CLUMP_SIZE.check_usize(self.clump_size)?;
         let positive = [
             ("length", self.length),
             ("wavelength", self.wavelength),
@@ -88,22 +106,11 @@ impl GroomParams {
             ("root_thickness", self.root_thickness),
             ("tip_thickness", self.tip_thickness),
             ("clump_radius", self.clump_radius),
-        ];
+        ]
+        .into_iter()
+        .chain(self.head.radii.iter().map(|&r| ("head radius", r)));
         for (name, value) in positive {
-            require(
-                name,
-                value.into(),
-                value.is_finite() && value > 0.0,
-                "positive",
-            )?;
-        }
-        for (name, value) in self.head.radii.iter().map(|&r| ("head radius", r)) {
-            require(
-                name,
-                value.into(),
-                value.is_finite() && value > 0.0,
-                "positive",
-            )?;
+            POSITIVE.named(name).check(value.into())?;
         }
         let non_negative = [
             ("length_variation", self.length_variation),
@@ -115,40 +122,13 @@ impl GroomParams {
             ("absorption_variation", self.absorption_variation),
         ];
         for (name, value) in non_negative {
-            require(
-                name,
-                value.into(),
-                value.is_finite() && value >= 0.0,
-                "zero or more",
-            )?;
+            NON_NEGATIVE.named(name).check(value.into())?;
         }
-        let clumping = self.clumping;
-        require(
-            "clumping",
-            clumping.into(),
-            (0.0..=1.0).contains(&clumping),
-            "within [0, 1]",
-        )?;
-        let physical = self.appearance.is_physical();
-        require(
-            "appearance",
-            f64::NAN,
-            physical,
-            "physical (β > 0, η > 1, absorption ≥ 0)",
-        )
-    }
-}
-
-fn require(
-    name: &'static str,
-    value: f64,
-    ok: bool,
-    rule: &'static str,
-) -> Result<(), ParamsError> {
-    if ok {
+        CLUMPING.check(self.clumping.into())?;
+        if !self.appearance.is_physical() {
+            return Err(ParamsError::Unphysical);
+        }
         Ok(())
-    } else {
-        Err(ParamsError::OutOfRange { name, rule, value })
     }
 }
 
@@ -230,7 +210,7 @@ mod tests {
         for (name, params) in cases {
             let err = params.validate().unwrap_err();
             assert!(
-                matches!(err, ParamsError::OutOfRange { name: n, .. } if n == name),
+                matches!(&err, ParamsError::Range(e) if e.name == name),
                 "{err}"
             );
         }
@@ -244,12 +224,6 @@ mod tests {
         }
         .validate()
         .unwrap_err();
-        assert!(matches!(
-            err,
-            ParamsError::OutOfRange {
-                name: "appearance",
-                ..
-            }
-        ));
+        assert_eq!(err, ParamsError::Unphysical);
     }
 }

@@ -272,12 +272,16 @@ fn validate(options: &FitOptions) -> Result<(), LightError> {
     if options.fit_width < 8 {
         return bad("the fit grid must be at least 8 pixels wide");
     }
-    let range = crate::srbf::MIN_BANDWIDTH..=crate::srbf::MAX_BANDWIDTH;
-    let min_ok = options.min_bandwidth.is_none_or(|b| range.contains(&b));
-    let max_ok = range.contains(&options.max_bandwidth)
-        && options.max_bandwidth >= options.min_bandwidth.unwrap_or(0.0);
-    if !min_ok || !max_ok {
-        return bad("bandwidths must lie in [1e-4, 4], min ≤ max");
+    let bandwidth = |name, b| crate::srbf::BANDWIDTH.named(name).check(b);
+    let range_fault = options
+        .min_bandwidth
+        .map_or(Ok(0.0), |b| bandwidth("min_bandwidth", b))
+        .and_then(|_| bandwidth("max_bandwidth", options.max_bandwidth));
+    if let Err(e) = range_fault {
+        return bad(&e.to_string());
+    }
+    if options.max_bandwidth < options.min_bandwidth.unwrap_or(0.0) {
+        return bad("min_bandwidth must not exceed max_bandwidth");
     }
     if options.tolerance.is_nan() || options.tolerance < 0.0 {
         return bad("the tolerance must be ≥ 0");

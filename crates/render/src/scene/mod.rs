@@ -14,7 +14,7 @@ use crate::scene::camera::Camera;
 use crate::scene::hair::HairParams;
 use cuticle_fiber::ranges::{CountRange, End, Range, RangeError};
 use cuticle_groom::Groom;
-use cuticle_groom::procedural::{GroomParams, MAX_STRANDS, Preset, generate};
+use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_light::{
     EnvMap, FitCache, FitOptions, FitSource, MAX_LIGHTS, MAX_RADIANCE, SrbfLight, fit_srbf_cached,
     load_or_default,
@@ -200,9 +200,8 @@ pub const BRUTE_GRID: CountRange = CountRange {
 };
 /// Strands of a preset groom (the groom crate makes empty ones too; a scene renders hair).
 pub const STRANDS: CountRange = CountRange {
-    name: "strands",
     min: 1,
-    max: MAX_STRANDS as u64,
+    ..cuticle_groom::procedural::STRANDS
 };
 /// Number J of SRBF lights fitted to the map (or read from a lights file).
 pub const LIGHTS: CountRange = CountRange {
