@@ -1,9 +1,10 @@
 //! TT near its edge (docs/validation.md, departures 20 and 21): where the
 //! smooth path is blocked or grazes, the light a rough surface lets through leaves at a Φ(1, h)
 //! that keeps moving smoothly with h and spreads over several times β/√2 in φ. The tilted
-//! model's N_TT takes both per offset from `cuticle_fiber::models::nonseparable::rough::deflection`; the paper's
-//! smooth Φ(1, h) with the single variance β²/2 (the tilted model's N_TT before) piles the
-//! edge offsets' light into too few columns.
+//! model's N_TT takes both per offset from
+//! `cuticle_fiber::models::nonseparable::rough::deflection`; the paper's smooth Φ(1, h) with the
+//! single variance β²/2 (the tilted model's N_TT before) piles the edge offsets' light into too few
+//! columns.
 //!
 //! The simulator (`cuticle-sim`, fixed seed) fills 128 columns of 0.049 rad; TT's density per
 //! unit φ in each column (∫ S cos θ dθ) is compared with N_TT read at the θ_d of the column's

@@ -159,10 +159,10 @@ impl NonSeparable {
     }
 
     /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]), TT's
-    /// and TRT's lobes (`tables/sine_lobes.rs`) and, where A(p, h) is a trace through tilted or rough
-    /// scales (the tilted model, at any α), its lobe selection (`tables/selection.rs`): without it a
-    /// sample traces A(p, h) at its offset, and R's rough mirror at every node. The tilted
-    /// model also tabulates R's mirror (`tables/mirrors.rs`) where R's lobe is not the rough
+    /// and TRT's lobes (`tables/sine_lobes.rs`) and, where A(p, h) is a trace through tilted or
+    /// rough scales (the tilted model, at any α), its lobe selection (`tables/selection.rs`):
+    /// without it a sample traces A(p, h) at its offset, and R's rough mirror at every node. The
+    /// tilted model also tabulates R's mirror (`tables/mirrors.rs`) where R's lobe is not the rough
     /// mirror's (β < [`rough::mirror::LEAST_BETA`]), which it otherwise solves by Newton's
     /// method at every evaluation, and, with tilted scales, TT's and TRT's tilt shift
     /// for the sampler (`tables/shifts.rs`), which it otherwise traces at every draw.
@@ -514,8 +514,8 @@ impl FiberModel for NonSeparable {
     /// The density the sampling procedure is built to realise: Σ_p M_p N_p with A replaced by
     /// the lobe-selection probability. R, TRT, TRRT and the remainder realise it exactly (their
     /// M does not depend on φ, or their N not on θ_o); TT's M depends on φ while its N depends
-    /// on θ_d, so the iteration realises it only up to the residual of d'Eon et al. 2014 Appendix A,
-    /// −(∂P_M/∂φ)(∂P_N/∂θ). The gap is measured by `fixed_point_sampling_gap_and_iterations`
+    /// on θ_d, so the iteration realises it only up to the residual of d'Eon et al. 2014 Appendix
+    /// A, −(∂P_M/∂φ)(∂P_N/∂θ). The gap is measured by `fixed_point_sampling_gap_and_iterations`
     /// below. Offsets whose every path the tilted scales lose are never drawn, so there the
     /// density integrates to the share of offsets that send light somewhere, below 1.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {

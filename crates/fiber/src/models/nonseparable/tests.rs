@@ -77,9 +77,9 @@ fn lobe_table_follows_the_exact_lobes() {
 /// d'Eon et al. 2014 §3: the fixed-point samples follow the model only up to Appendix A's residual.
 /// Measured total-variation distances between 2¹⁹ samples and the reported density, over
 /// θ_i × β × α (the tilted model: θ_i 1.1, α +2° loses 48 % to the scales, and its
-/// sampler refuses the offsets that lose everything): within 0.005 of the noise floor of the same number of exact draws (0.006 to
-/// 0.012 here), asserted within 0.01; the mean iteration count stays at most 3 (the paper
-/// reports about 2).
+/// sampler refuses the offsets that lose everything): within 0.005 of the noise floor of the same
+/// number of exact draws (0.006 to 0.012 here), asserted within 0.01; the mean iteration count
+/// stays at most 3 (the paper reports about 2).
 #[test]
 fn fixed_point_sampling_gap_and_iterations() {
     use crate::testing::sampling_gap;

@@ -13,7 +13,8 @@ use std::cell::Cell;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
-/// θ_cone of R (d'Eon et al. 2014 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)).
+/// θ_cone of R (d'Eon et al. 2014 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α
+/// sin θ_i)).
 pub fn cone_r(theta_i: f64, alpha: f64, phi: f64) -> f64 {
     let (sa, ca) = alpha.sin_cos();
     let x =
@@ -502,7 +503,8 @@ pub fn trrt_azimuthal_variance(beta: f64) -> f64 {
     12.0 * beta * beta
 }
 
-/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
+/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014
+/// §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
     let (s, c) = theta_d.sin_cos();
     let d = (-2.0 * c + 4.0 * eta * (1.0 - s * s / (eta * eta)).max(0.0).sqrt()) / c.max(1e-6);

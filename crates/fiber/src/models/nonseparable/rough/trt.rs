@@ -9,7 +9,8 @@
 //! there, toward the equator of the smooth exit and narrower; and approaching that edge the
 //! light that leaves moves toward the equator while the smooth path's exit moves toward the
 //! pole (docs/validation.md, "Where TRT's error lives", has the simulated offsets). TT's
-//! lobe had the same error until its pair quadrature ([`crate::models::nonseparable::rough::deflection`]).
+//! lobe had the same error until its pair quadrature
+//! ([`crate::models::nonseparable::rough::deflection`]).
 //!
 //! The quadrature: at each of [`OFFSETS`] offsets over the half fiber (TRT's exit is even in
 //! h), the entry's micro-normals refract the light into chords (`refraction_at`), each chord

@@ -8,9 +8,10 @@
 //! up to half a radian of Φ near the edges (docs/validation.md, departure 9;
 //! `tests/tilted_tir.rs` checks this module against an exact 3D trace). The paper's model
 //! keeps Bravais' Φ; the tilted model shifts TRT's azimuthal lobe by [`deflection_shift`]
-//! (R has its exact mirror, [`crate::models::nonseparable::scales::mirror`]; TRRT measured worse shifted; TT takes
-//! its shift and spread through the rough surface, [`crate::models::nonseparable::rough::deflection`], which this
-//! smooth path is the β → 0 limit of) and places TT's cone at [`tilted_tt_offset`].
+//! (R has its exact mirror, [`crate::models::nonseparable::scales::mirror`]; TRRT measured worse
+//! shifted; TT takes its shift and spread through the rough surface,
+//! [`crate::models::nonseparable::rough::deflection`], which this smooth path is the β → 0 limit
+//! of) and places TT's cone at [`tilted_tt_offset`].
 //!
 //! With γ_i the in-plane angle of the incident direction to the normal at entry, γ′_k that of
 //! chord k (the same at both of its ends, by the circle's symmetry) and γ_o that of the exit
@@ -41,8 +42,8 @@ pub struct TiltedExit {
 }
 
 /// The exit of the path entering at offset h through scales tilted by α (the sign of
-/// [`crate::geometry::nusselt`]) after p internal chords; `None` where a smooth surface blocks the path
-/// ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally reflected).
+/// [`crate::geometry::nusselt`]) after p internal chords; `None` where a smooth surface blocks the
+/// path ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally reflected).
 pub fn tilted_exit(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> Option<TiltedExit> {
     let tilt = Tilt::new(alpha);
     let d = incident(theta_i, h);

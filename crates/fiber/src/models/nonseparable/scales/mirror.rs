@@ -389,8 +389,8 @@ mod tests {
 
     /// Newton's solve against its reference twin, the bisection, over θ_i × α × φ (grazing
     /// incidence and both tilt signs, the azimuths past ±π included): the same offsets to 1e-12,
-    /// the same Jacobian and spread to the twin's central difference (1e-7 relative), the same reach;
-    /// except where the azimuth jumps (see [`Mirror::offset`]; at θ_i = ±1.5 with |α| ≥ 4°
+    /// the same Jacobian and spread to the twin's central difference (1e-7 relative), the same
+    /// reach; except where the azimuth jumps (see [`Mirror::offset`]; at θ_i = ±1.5 with |α| ≥ 4°
     /// the whole front half), which the bisection reports as a root of vanishing Jacobian
     /// and Newton's solve as none.
     #[test]

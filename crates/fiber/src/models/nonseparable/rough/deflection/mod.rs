@@ -15,11 +15,11 @@
 //! of slopes, `lattice_slopes`, each with Walter et al. 2007's transmission weight, as
 //! [`crate::optics::rough_interface`] takes them); each chord meets the exit's scale
 //! ([`AtScale::inside`]), whose micro-normals refract it out on a finer lattice. Each exit's
-//! in-plane angles give its Φ = π + γ′ − γ_i + γ′ − γ_o, signed as [`crate::models::nonseparable::scales::deflection`]
-//! takes them, and the weighted mean and standard deviation over every (entry, exit) pair are
-//! the offset's. [`RoughTtTable`] holds them over (θ_i, γ = asin h) for one fiber, read
-//! bilinearly; the model's N_TT, its azimuthal table and its sampler all read that one table,
-//! so they agree with each other exactly.
+//! in-plane angles give its Φ = π + γ′ − γ_i + γ′ − γ_o, signed as
+//! [`crate::models::nonseparable::scales::deflection`] takes them, and the weighted mean and
+//! standard deviation over every (entry, exit) pair are the offset's. [`RoughTtTable`] holds them
+//! over (θ_i, γ = asin h) for one fiber, read bilinearly; the model's N_TT, its azimuthal table and
+//! its sampler all read that one table, so they agree with each other exactly.
 //!
 //! The same pairs give each exit's sine x = sin θ_o. TT's longitudinal lobe at a column φ is
 //! the mean, spread and skewness of x over the light that reaches φ from every offset

@@ -35,8 +35,9 @@
 //! integrate to it; `density_keeps_the_energy`): where the smooth mirror
 //! off a tilted scale leaves below the macro surface, the rough surface still sends part of
 //! the light out (the simulated R reaches past the smooth one there), which the smooth-mirror
-//! reflectance of [`crate::models::nonseparable::scales::attenuation`] counts as lost. The lobe selection keeps that
-//! reflectance: it is a proposal, which need not follow S exactly, only cover it.
+//! reflectance of [`crate::models::nonseparable::scales::attenuation`] counts as lost. The lobe
+//! selection keeps that reflectance: it is a proposal, which need not follow S exactly, only cover
+//! it.
 
 use crate::lobes::longitudinal::ConeLobe;
 pub use crate::lobes::sine_lobe::SineMoments;
