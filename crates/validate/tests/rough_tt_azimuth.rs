@@ -1,4 +1,4 @@
-//! TT near its edge (docs/validation.md, departures 20 and 21): where the
+//! TT near its edge (docs/departures/20-tt-rough-azimuth.md, 21-tt-column-covariance.md): where the
 //! smooth path is blocked or grazes, the light a rough surface lets through leaves at a Φ(1, h)
 //! that keeps moving smoothly with h and spreads over several times β/√2 in φ. The tilted
 //! model's N_TT takes both per offset from

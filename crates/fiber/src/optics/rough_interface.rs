@@ -35,7 +35,7 @@ const ENTRIES: usize = 1024;
 /// The directions [`RoughInterface::refractions`] gives: the micro-normals of a Fibonacci
 /// lattice (`lattice_slopes`). A product grid of 4² equal-probability slopes stopped at
 /// 1.15 standard deviations per axis, short of the steep entries whose light alone leaves
-/// where TT's exit is past the critical angle (docs/validation.md, departure 26).
+/// where TT's exit is past the critical angle (docs/departures/26-tt-grazing-energy.md).
 pub const REFRACTIONS: usize = 21;
 
 /// How much wider than the slopes' own normal law the lattice's slopes are drawn

@@ -17,7 +17,8 @@
 //! cones, widths, R's mirrors, the tilt's shifts and the lobe-selection densities from
 //! `tables/`; the model without tables is the reference they are measured against. The model
 //! is not reciprocal, like d'Eon 2011. Where the tilted form departs from the paper, and
-//! why, is `docs/nonseparable.md`; the figures are in `docs/validation.md`.
+//! why, is `docs/nonseparable.md`; each departure, with its figure, is a file in
+//! `docs/departures/`.
 //!
 //! Erratum (both forms): d'Eon et al. 2014 §2.4 prints
 //! D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The first-order derivatives it gives

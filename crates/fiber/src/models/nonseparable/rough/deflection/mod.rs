@@ -3,12 +3,9 @@
 //! its events. The project's own extension of d'Eon et al. 2014, whose N_TT centres every
 //! offset's light on the smooth path's Φ(1, h) with one azimuthal variance β²/2 (§2.4).
 //!
-//! Why: near the offsets where the smooth path is blocked (the exit past the critical angle at
-//! a tilted scale) or grazes, the smooth Φ(1, h) bends sharply and then stops, where the light
-//! a rough surface lets through keeps moving smoothly with h; and the spread in φ grows from
-//! β/√2 near h = 0 to several times it at the edges. docs/validation.md, departure 20,
-//! has the comparison. Against the simulator: offset by offset in `cuticle-sim`'s
-//! `path::tests` (the paths traced at fixed h), and as N_TT over TT's edge columns in
+//! Why: near the offsets where the smooth path is blocked or grazes, the light a rough surface
+//! lets through keeps moving smoothly with h, and spreads wider in φ than β/√2
+//! (docs/departures/20-tt-rough-azimuth.md). Checked against the simulator in
 //! `crates/validate/tests/rough_tt_azimuth.rs`.
 //!
 //! The path: the entry's micro-normals refract the light into a spread of chords (a lattice

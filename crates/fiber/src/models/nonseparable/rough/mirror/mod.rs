@@ -1,5 +1,5 @@
 //! R's azimuth off the rough surface: N_R spread by the micro-normals' slopes, and turned
-//! inward where an offset's incidence grazes (docs/validation.md, departure 11).
+//! inward where an offset's incidence grazes (docs/departures/11-r-rough-azimuth.md).
 //!
 //! d'Eon et al. 2011, and d'Eon et al. 2014 §2.3 after it, leave R without azimuthal roughness:
 //! N_R = ½ |dh/dφ| A(0, h) at the offset whose mirror leaves at φ. The simulated surface
