@@ -131,10 +131,8 @@ fn edge_mean_gap(theta_i: f64, alpha_deg: f64, beta: f64) -> f64 {
 /// model's column means, the quadrature's pairs binned by the column they reach (departure
 /// 22; their rule a widened lattice since departure 23), follow the simulation's (measured
 /// within 0.0015 rad of this run's small simulation in both; against 10 M paths at θ_i 0.75,
-/// α 2°, β 0.04 within 0.0004 over 1.9 ≤ |φ| ≤ 2.6, `cuticle validate --moments`). Departure 21's
-/// columns, a bivariate normal in (x, φ) per offset, missed by 0.0053 and 0.0031, departure
-/// 19's lobe, taken at the offset whose smooth exit leaves at φ, by 0.036 and 0.0043, and
-/// each bound fails both.
+/// α 2°, β 0.04 within 0.0004 over 1.9 ≤ |φ| ≤ 2.6, `cuticle validate --moments`). The
+/// bounds fail the columns of departures 19 and 21 (docs/departures/22-tt-column-pairs.md).
 #[test]
 fn tt_edge_columns_keep_the_simulated_inclination() {
     for (theta_i, alpha_deg, beta, bound) in [(0.75, 2.0, 0.04, 0.002), (0.25, 0.0, 0.08, 0.0022)] {

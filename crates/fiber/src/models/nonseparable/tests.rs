@@ -15,9 +15,7 @@ use std::f64::consts::PI;
 /// them since departure 28) change fastest with θ_i and the lobes are narrowest. The
 /// tilted TRT lobe, read from the rough quadrature's moments, linear in θ_i on both paths
 /// (departure 29), differs only by the lobe table's own interpolation: its cone within
-/// 4.1e-5 rad, its width within 1.3e-4 (before it, averaged over the offsets whose smooth
-/// path leaves and cut at h = 0, departures 16 and 17, with kinks in θ_i: 1.8e-3 and
-/// 2.3e-2).
+/// 4.1e-5 rad, its width within 1.3e-4.
 #[test]
 fn lobe_table_follows_the_exact_lobes() {
     for (scales, alpha_deg) in [

@@ -367,8 +367,8 @@ mod tests {
     /// the (entry, exit) pairs of [`crate::models::nonseparable::rough::deflection`]'s finer
     /// lattice, an independent quadrature, integrated over h: within 1 %, where only the slopes'
     /// tails let light out (θ_i 1.1, α 4°, β 0.02) as elsewhere; product grids of equal-probability
-    /// slopes (4² at the entry, 48² at the exit) were 22 % and 1.7 % off (docs/validation.md,
-    /// departure 26).
+    /// slopes (4² at the entry, 48² at the exit) were 22 % and 1.7 % off
+    /// (docs/departures/26-tt-grazing-energy.md).
     #[test]
     fn tt_energy_follows_the_pair_quadrature_at_grazing_incidence() {
         use crate::models::nonseparable::rough::deflection::{Rule, rough_tt_exit};

@@ -25,8 +25,8 @@
 //!    reflected to φ by quadrature in micro-normal space ([`column`]): its energy, which is
 //!    N_R for S, and the mean and variance of sin θ_o, matched by the lobe that has them
 //!    ([`ConeLobe::from_sine_moments`]). Step 2's mixture alone is too wide in θ_o where the
-//!    offsets graze, and its Gaussians in φ misplace N_R there (docs/validation.md, departure
-//!    18).
+//!    offsets graze, and its Gaussians in φ misplace N_R there
+//!    (docs/departures/18-r-column-lobe.md).
 //! 4. [`RoughMirror::density`] reads N_R and [`RoughMirror::lobe`] R's lobe bilinear in
 //!    (θ_i, φ); [`RoughMirror::sample_phi`] draws φ_m(h) + μ + s z for the sampler's offset h,
 //!    so the sampled density is the one step 2's table holds up to its interpolation.
