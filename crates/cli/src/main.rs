@@ -40,7 +40,8 @@ enum Command {
     /// Two renders' output folders against each other over the hair: per-channel means, ratio,
     /// relative RMSE, for the whole hair and its bottom fifth (compare.json).
     Compare(commands::compare::Args),
-    /// The live look-development window: edit the hair, lighting and camera, paint colour onto strands.
+    /// The live look-development window: edit the hair, lighting and camera, paint colour onto
+    /// strands.
     View(Box<commands::view::Args>),
     /// Every simulated configuration of a sweep against the models: error tables, plot, sheets.
     Validate(commands::validate::Args),

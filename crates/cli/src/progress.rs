@@ -1,4 +1,5 @@
-//! Progress bars that show on a terminal and stay silent when stderr is not one (docs/conventions.md §5).
+//! Progress bars that show on a terminal and stay silent when stderr is not one
+//! (docs/conventions.md §5).
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;

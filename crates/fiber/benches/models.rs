@@ -10,9 +10,9 @@
 //!
 //! `cargo bench -p cuticle-fiber --bench models` runs everything; criterion's filter (a regex)
 //! runs a part, e.g. only the table's four models:
-//! `cargo bench -p cuticle-fiber --bench models -- '^(deon2011_table|chiang2016_h0.3|nonseparable_table|marschner2003_table)/'`
-//! (exact Marschner 2003, the far-field Chiang 2016, direct d'Eon 2011 and the table build
-//! come after them).
+//! `cargo bench -p cuticle-fiber --bench models --
+//! '^(deon2011_table|chiang2016_h0.3|nonseparable_table|marschner2003_table)/'` (exact Marschner
+//! 2003, the far-field Chiang 2016, direct d'Eon 2011 and the table build come after them).
 
 #[path = "common/inputs.rs"]
 mod inputs;

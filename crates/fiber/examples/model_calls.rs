@@ -2,8 +2,9 @@
 //! `benches/models.rs` (pbrt-v4's: directions uniform on the sphere, β = 0.3, α = 2°,
 //! eumelanin 1.3, h = 0.3 for Chiang 2016's near field), each in its own function, for
 //! instruction counts that a loaded machine does not disturb:
-//! `valgrind --tool=callgrind --toggle-collect='model_calls::run_*' target/release/examples/model_calls deon2011`
-//! then `callgrind_annotate --inclusive=yes` gives each `run_*`'s instructions for CALLS calls.
+//! `valgrind --tool=callgrind --toggle-collect='model_calls::run_*'
+//! target/release/examples/model_calls deon2011` then `callgrind_annotate --inclusive=yes` gives
+//! each `run_*`'s instructions for CALLS calls.
 //!
 //! With `--time` it times each kind of call instead: 301 rounds of CALLS calls, the three kinds
 //! interleaved, and prints per call the fastest round and the median round. Other programs on a

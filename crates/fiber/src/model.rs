@@ -19,8 +19,9 @@ pub struct FiberSample {
     pub iterations: u32,
 }
 
-/// A fiber scattering model in the units of docs/conventions.md §3: S in sr⁻¹, with ∫ S dω_o the albedo.
-/// Angles follow docs/conventions.md §2; ω_i points toward the light, ω_o toward the viewer.
+/// A fiber scattering model in the units of docs/conventions.md §3: S in sr⁻¹, with ∫ S dω_o the
+/// albedo. Angles follow docs/conventions.md §2; ω_i points toward the light, ω_o toward the
+/// viewer.
 pub trait FiberModel: Send + Sync {
     /// Short name as the command line spells it.
     fn name(&self) -> &'static str;

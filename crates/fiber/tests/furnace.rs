@@ -8,7 +8,7 @@
 //! sampling necessary; it costs up to 1.04 % of the energy (β = 0.3, θ_i = 1.0; 0.6 % at
 //! β = 0.15, θ_i = 1.2, measured with `cuticle furnace --model nonseparable-paper`), and the
 //! test holds it to that. The default form reads N_TT at one θ_d whatever θ_o
-//! (docs/validation.md, departure 21), so its TT integrates to A(1, h)'s energy exactly.
+//! (docs/departures/21-tt-column-covariance.md), so its TT integrates to A(1, h)'s energy exactly.
 //! The grid runs on the tabulated fast path (whose error against direct quadrature the table's
 //! own tests bound); one configuration also runs on direct quadrature.
 //!
@@ -113,7 +113,7 @@ fn nonseparable_conserves_energy() {
 /// at β = 0.3, θ_i = 1.0 and 1.4; the sum within 0.0013 there and 0.0010 at β = 0.04,
 /// θ_i = 1.4). At β = 0.04 the
 /// rule runs at twice its resolution: R's columns near |φ| = π, where the reflecting offsets
-/// graze, are down to 0.0017 rad wide at θ_i = 1.4 (docs/validation.md, departure 18), which
+/// graze, are down to 0.0017 rad wide at θ_i = 1.4 (docs/departures/18-r-column-lobe.md), which
 /// the default rule's finest panels (0.275 β) do not resolve.
 #[test]
 fn rough_nonseparable_integrates_to_its_lobe_energies() {

@@ -12,7 +12,7 @@
 //! simulation's TRT at θ_i = 1.1 is black too, `crates/validate/tests/tilted_energy.rs`).
 //!
 //! The same trace gives the exit azimuths that `tilted_deflection` must reproduce (issue 14,
-//! departure 9 of docs/validation.md).
+//! docs/departures/09-tt-exit-azimuth.md).
 
 use cuticle_fiber::geometry::nusselt::{self, Blocked};
 use cuticle_fiber::models::nonseparable::scales::attenuation::{
@@ -238,7 +238,7 @@ fn tt_exit_tilted(theta_i: f64, [entry, exit]: [f64; 2], h: f64) -> Option<DVec3
     refract(t, -scale_normal(next_point(p1, t), exit), ETA)
 }
 
-/// TT's width through tilted scales (departure 12 of docs/validation.md) is the spread of the
+/// TT's width through tilted scales (docs/departures/12-tt-width.md) is the spread of the
 /// exact trace's exit sine o_u under a Beckmann slope along the axis at each scale (standard
 /// deviation σ = β/√2, two-point Gauss–Hermite: Σ_k ((o_u(α_k + σ) − o_u(α_k − σ))/2)²), as a
 /// lobe variance. The paper's width at θ_d = −θ_i ignores the tilt: it is the same to first
@@ -339,8 +339,8 @@ fn azimuthal_spread(theta_i: f64, h: f64, p: usize, beta: f64) -> f64 {
     beta / 2f64.sqrt() * sum.sqrt()
 }
 
-/// TRT's azimuthal width in the tilted model (departure 13 of docs/validation.md) is the
-/// first-order spread of the exact trace's exit azimuth under Beckmann slopes (standard
+/// TRT's azimuthal width in the tilted model (docs/departures/13-trt-trrt-azimuthal-width.md) is
+/// the first-order spread of the exact trace's exit azimuth under Beckmann slopes (standard
 /// deviation β/√2 per axis) at its three events, within 10 %, at h = 0 and at the caustic
 /// of a fiber at θ_i = 0.25; the paper's √2 β is a third too wide at h = 0. (At the caustics
 /// of steeper incidence the spread grows past 1.5 β, which the constant leaves out.)
@@ -390,13 +390,13 @@ fn trrt_azimuthal_width_is_the_exact_traces_spread() {
     }
 }
 
-/// TT's cone through tilted scales (departures 14 and 21 of docs/validation.md) sits where the
-/// exact trace's smooth exit leaves: at each offset that leaves, the model's cone at the exit's
-/// azimuth is the exit's inclination (β small enough that the lobe's mean is the smooth
-/// exit's). The cone at the offset Bravais' Φ(1, h) selects for that azimuth, printed beside
-/// it, misses by up to a few hundredths of a radian. Since departure 21 the cone is the mean
-/// over the light that reaches the azimuth's column, tabulated over 129 columns of |φ|:
-/// measured within 1.6e-4 rad but at θ_i 0.75, α +4° (3.6e-3, at the exits next to the
+/// TT's cone through tilted scales (docs/departures/14-tt-cone-offset.md,
+/// 21-tt-column-covariance.md) sits where the exact trace's smooth exit leaves: at each offset that
+/// leaves, the model's cone at the exit's azimuth is the exit's inclination (β small enough that
+/// the lobe's mean is the smooth exit's). The cone at the offset Bravais' Φ(1, h) selects for that
+/// azimuth, printed beside it, misses by up to a few hundredths of a radian. Since departure 21 the
+/// cone is the mean over the light that reaches the azimuth's column, tabulated over 129 columns of
+/// |φ|: measured within 1.6e-4 rad but at θ_i 0.75, α +4° (3.6e-3, at the exits next to the
 /// offsets whose smooth path is blocked) and θ_i 1.1, α −2° (8.3e-4), a tenth of the miss at
 /// Bravais' offset in each; departure 14's cone, solved per azimuth, was within 5e-5.
 #[test]
@@ -440,7 +440,7 @@ fn tt_cone_sits_where_the_exact_traces_exit_leaves() {
     }
 }
 
-/// N_TT and N_TRT of the tilted model (departure 15 of docs/validation.md) put A(p, h) where
+/// N_TT and N_TRT of the tilted model (docs/departures/15-shift-reference.md) put A(p, h) where
 /// the exact trace's exit leaves. d'Eon et al. 2011's N_p takes Bravais' Φ with η′ at the θ_d
 /// it is read at; along the model's own cone that θ_d is the tilted exit's, not −θ_i, and the
 /// shift through the tilted scales is taken relative to it (TT's cone follows each path's
@@ -535,7 +535,7 @@ fn azimuthal_lobes_fall_where_the_exact_traces_exits_leave() {
     }
 }
 
-/// TRT's width through tilted scales (departure 16 of docs/validation.md): the model's spread
+/// TRT's width through tilted scales (docs/departures/16-trt-width.md): the model's spread
 /// of the exit's sine, averaged over the offsets with A(2, h) about the cone at h = 0, is the
 /// exact trace's within 1 %: each offset's spread by central differences in all six slopes
 /// (along the scale and across the fiber at TRT's three events, standard deviation β/√2), 400
@@ -600,7 +600,7 @@ fn trt_width_through_tilted_scales_is_the_exact_traces_spread() {
     assert!(paper_off > 0.2, "{paper_off}");
 }
 
-/// TRT's lobe from the paths that leave (departure 17 of docs/validation.md) against an exact
+/// TRT's lobe from the paths that leave (docs/departures/17-trt-cut.md) against an exact
 /// trace of the same paths written with vectors: at h = 0, each of the three scales tilted
 /// along the fiber by a slope of 32 equal-probability values (the model takes 16), each path
 /// weighted by its projected micro-normal and Fresnel factor at every event, what leaves has

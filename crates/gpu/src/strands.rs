@@ -1,7 +1,7 @@
 //! Per-strand parameters as the shading pass reads them: one record per strand in a storage
 //! buffer, derived from the scene by [`GpuRenderer::prepare`](crate::GpuRenderer::prepare) and
-//! rewritten for a few strands by [`GpuRenderer::update_strands`](crate::GpuRenderer::update_strands)
-//! without touching the groom.
+//! rewritten for a few strands by
+//! [`GpuRenderer::update_strands`](crate::GpuRenderer::update_strands) without touching the groom.
 //!
 //! A strand carries its absorption μ_a (RGB, per unit radius, as `HairParams::fiber` gives it);
 //! the CPU renderer takes every other parameter from the scene's global set (scene/hair.rs), and

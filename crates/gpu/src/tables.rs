@@ -5,8 +5,8 @@
 //!
 //! - Built once with [`GpuRenderer::new`](crate::GpuRenderer::new), independent of every hair
 //!   parameter ([`StaticTables`]): 𝒞_k/Z with ln Z, ℋ^TRT (for eccentric fibers, whose TRT is
-//!   fitted at each sample), N_R's Fresnel quintic, the half-circle integrals W_k and P, the spread normalisation Z,
-//!   and the circular-Gaussian width correction.
+//!   fitted at each sample), N_R's Fresnel quintic, the half-circle integrals W_k and P, the spread
+//!   normalisation Z, and the circular-Gaussian width correction.
 //! - Rebuilt by the CPU renderer when η, the caustics or (for dual scattering) any parameter but
 //!   absorption changes, and uploaded then: the lobe table (TT, TRT) and the back-scattering
 //!   moments ([`lobe_grids`], [`back_grid`]).

@@ -1,7 +1,7 @@
 //! Per-strand appearance: what a fiber scattering model needs to shade one strand.
 //!
-//! Units follow docs/conventions.md §5: μ_a per unit fiber radius, β (longitudinal roughness) unitless,
-//! the scale tilt α in degrees, η the index of refraction of the fiber.
+//! Units follow docs/conventions.md §5: μ_a per unit fiber radius, β (longitudinal roughness)
+//! unitless, the scale tilt α in degrees, η the index of refraction of the fiber.
 
 use serde::{Deserialize, Serialize};
 

@@ -1,5 +1,5 @@
-//! Lat-long geometry (docs/conventions.md §4, +y up): directions ↔ (θ, φ) ↔ continuous pixel coordinates,
-//! and the solid angle of a pixel.
+//! Lat-long geometry (docs/conventions.md §4, +y up): directions ↔ (θ, φ) ↔ continuous pixel
+//! coordinates, and the solid angle of a pixel.
 
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -31,7 +31,8 @@ pub fn phi_center(column: usize, width: usize) -> f64 {
     -PI + 2.0 * PI * (column as f64 + 0.5) / width as f64
 }
 
-/// Solid angle of a pixel of row `row`: Δφ · (sin θ_top − sin θ_bottom), Δφ = 2π/W (docs/conventions.md §4).
+/// Solid angle of a pixel of row `row`: Δφ · (sin θ_top − sin θ_bottom), Δφ = 2π/W
+/// (docs/conventions.md §4).
 pub fn pixel_solid_angle(row: usize, width: usize, height: usize) -> f64 {
     let d_phi = 2.0 * PI / width as f64;
     d_phi * (theta_top(row, height).sin() - theta_top(row + 1, height).sin())

@@ -1,6 +1,7 @@
 //! Environment light for cuticle: lat-long environment maps (Radiance `.hdr`, OpenEXR, or a
 //! procedural sky built in code), spherical Gaussians (SRBFs) and the fit of a map by a few SRBF
-//! lights that the renderer consumes (Xu et al. 2011 eq. 1, after Tsai & Shih 2006 and Ren et al. 2010).
+//! lights that the renderer consumes (Xu et al. 2011 eq. 1, after Tsai & Shih 2006 and Ren et al.
+//! 2010).
 //!
 //! # Direction convention
 //!
@@ -8,9 +9,9 @@
 //! - elevation θ = asin(y) ∈ [−π/2, π/2] (+π/2 is the zenith),
 //! - azimuth φ = atan2(z, x) ∈ (−π, π] (φ = 0 is +x, φ = +π/2 is +z),
 //!
-//! so ω = (cos θ cos φ, sin θ, cos θ sin φ). This is the lat-long layout of docs/conventions.md §4: in a
-//! `width × height` map, column j covers φ ∈ [−π + 2πj/W, −π + 2π(j+1)/W) and row k covers θ from
-//! π/2 − πk/H down to π/2 − π(k+1)/H. Row 0 is the sky's top, the image's centre column looks
+//! so ω = (cos θ cos φ, sin θ, cos θ sin φ). This is the lat-long layout of docs/conventions.md §4:
+//! in a `width × height` map, column j covers φ ∈ [−π + 2πj/W, −π + 2π(j+1)/W) and row k covers θ
+//! from π/2 − πk/H down to π/2 − π(k+1)/H. Row 0 is the sky's top, the image's centre column looks
 //! along +x, its left edge along −x, and +z is a quarter of the width right of the centre. Seen
 //! from inside the sphere with +y up, the picture is not mirrored.
 //!
@@ -29,8 +30,8 @@
 //!
 //! # SRBF lights
 //!
-//! [`SrbfLight`] is G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²) times an RGB coefficient L_j (Xu et al. 2011
-//! eq. 1 and Table 1), with its closed-form integral, product and inner product. [`fit_srbf`]
+//! [`SrbfLight`] is G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²) times an RGB coefficient L_j (Xu et al.
+//! 2011 eq. 1 and Table 1), with its closed-form integral, product and inner product. [`fit_srbf`]
 //! approximates a map by J of them. Fitted suns can be a pixel wide (κ = 2/λ² ~ 10⁵): evaluate
 //! G as exp(−κ‖ω − ω_j‖²/2), never as exp(κ(ω·ω_j − 1)) in single precision
 //! ([`SrbfLight::basis`]).

@@ -1,5 +1,5 @@
-//! The project's default environment, built in code (docs/conventions.md §6): a blue sky graded to a pale
-//! horizon, a warm sun disc with a soft aureole as the bright, compact key light for hair
+//! The project's default environment, built in code (docs/conventions.md §6): a blue sky graded to
+//! a pale horizon, a warm sun disc with a soft aureole as the bright, compact key light for hair
 //! highlights, and a dim earthy ground. Radiance is linear and in arbitrary but consistent units
 //! (the zenith is about 0.3, the sun disc about 2000).
 

@@ -1,6 +1,6 @@
 //! Spherical radial basis functions (spherical Gaussians) as lights:
-//! G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²), Xu et al. 2011 eq. 1 and Table 1, with RGB coefficient L_j.
-//! Writing κ = 2/λ² (the "sharpness"), G = exp(κ(ω·ω_j − 1)), and the closed forms follow from
+//! G(ω; ω_j, λ_j) = exp(2(ω·ω_j − 1)/λ_j²), Xu et al. 2011 eq. 1 and Table 1, with RGB coefficient
+//! L_j. Writing κ = 2/λ² (the "sharpness"), G = exp(κ(ω·ω_j − 1)), and the closed forms follow from
 //! ∫_{S²} exp(k ω·μ) dω = 4π sinh(k)/k.
 
 use crate::EnvMap;

@@ -2,8 +2,8 @@
 //! under Environment Lighting* (Xu et al. 2011), on the CPU, with its brute-force reference.
 //!
 //! # Units and convention
-//! The fiber crate's S is docs/conventions.md §3's: S = Σ_p ½ M_p N_p cos θ_o / cos²θ_d (power fraction per
-//! steradian). The radiance a fiber shows, averaged across its projected width, is
+//! The fiber crate's S is docs/conventions.md §3's: S = Σ_p ½ M_p N_p cos θ_o / cos²θ_d (power
+//! fraction per steradian). The radiance a fiber shows, averaged across its projected width, is
 //! L_o = (1/cos θ_o) ∫ S L_i cos θ_i dω_i = ∫ ½ M_p N_p / cos²θ_d L_i cos θ_i dω_i,
 //! i.e. Marschner's L̄ = D ∫ S_M L_i cos θ_i dω_i divided by the width D, with his unit-integral
 //! M_p(θ_h) taken as the density ½ M_p in θ_o that conserves energy (the fiber crate's module

@@ -80,11 +80,11 @@ fn empty_groom() -> Groom {
 
 /// The SRBF render (circular Gaussians, linear quadrature) against the exact Marschner 2003
 /// model under the same environment as 1536 directional lights, single scattering, no shadows:
-/// relative RMSE over hair pixels below 0.15 at m = 4 (measured 0.107; m = 2: 0.143), and m = 2 further off than m = 4
-/// (Xu et al. 2011 Fig. 5). The bound covers the model differences the SRBF path makes by design —
-/// the R Fresnel quintic, Gaussian TT/TRT azimuths with energy-preserving glints where the exact
-/// model uses Marschner's k_G glints and cubic deflection — and the Gaussian θ factor of wide
-/// lights.
+/// relative RMSE over hair pixels below 0.15 at m = 4 (measured 0.107; m = 2: 0.143), and m = 2
+/// further off than m = 4 (Xu et al. 2011 Fig. 5). The bound covers the model differences the SRBF
+/// path makes by design — the R Fresnel quintic, Gaussian TT/TRT azimuths with energy-preserving
+/// glints where the exact model uses Marschner's k_G glints and cubic deflection — and the Gaussian
+/// θ factor of wide lights.
 #[test]
 fn srbf_matches_brute_force_and_m4_beats_m2() {
     let lights = lights();

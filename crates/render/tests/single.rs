@@ -157,8 +157,8 @@ fn wide_light_matches_the_exact_model_per_mode() {
 /// front (θ_o = 0, θ_i = 0.3, φ = 1, 1.25, 1.5 about TT's deflection limit φ ≈ 1.40, below
 /// which the model's N_TT is 0): the modes' sum at φ = 1 within 0.75–1.3 of the exact model's,
 /// and summed over the three azimuths at most 2.5× it per channel (measured 1.25× at φ = 1,
-/// 2.3× summed in red: the pair still leaks a little just inside the limit). Xu et al. 2011 eq. 16's
-/// single TT Gaussian gave 2.05× at φ = 1 and 5.3× at φ = 1.5 (its tail past the limit).
+/// 2.3× summed in red: the pair still leaks a little just inside the limit). Xu et al. 2011 eq.
+/// 16's single TT Gaussian gave 2.05× at φ = 1 and 5.3× at φ = 1.5 (its tail past the limit).
 #[test]
 fn a_light_beside_the_fiber_sees_no_tt_past_its_limit() {
     let r = Renderer::new();

@@ -1,6 +1,6 @@
 //! Sampling the Beckmann microfacet distribution (Walter et al. 2007 §5.1, eqs. 28–29); the
-//! distribution and its Smith term are the fiber crate's ([`cuticle_fiber::optics::beckmann`]), which
-//! the models' rough interface averages over.
+//! distribution and its Smith term are the fiber crate's ([`cuticle_fiber::optics::beckmann`]),
+//! which the models' rough interface averages over.
 
 use cuticle_fiber::math::ln_fast;
 pub use cuticle_fiber::optics::beckmann::{distribution, smith_g1};

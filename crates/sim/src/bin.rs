@@ -1,5 +1,5 @@
-//! Which lat-long pixel (docs/conventions.md §4) an exit direction falls in, without asin or atan2: a table
-//! gives a first guess, and comparisons with the exact pixel edges settle it. Row k holds
+//! Which lat-long pixel (docs/conventions.md §4) an exit direction falls in, without asin or atan2:
+//! a table gives a first guess, and comparisons with the exact pixel edges settle it. Row k holds
 //! sin θ_top(k+1) < ω·u ≤ sin θ_top(k); column j holds the azimuths from edge j (inclusive) to
 //! edge j+1, tested by the sign of 2D cross products with the edge directions. This agrees with
 //! `LatLongGrid::index_of` except for directions within rounding of an edge.

@@ -46,7 +46,8 @@ mod tests {
     #[test]
     fn chord_matches_the_bravais_length() {
         let (theta_i, eta, h) = (0.6_f64, 1.55_f64, 0.4_f64);
-        // Refract the entry ray exactly at the macro normal and compare with docs/conventions.md §8.
+        // Refract the entry ray exactly at the macro normal and compare with docs/conventions.md
+        // §8.
         let p = entry_point(h);
         let n = macro_normal(p);
         let i = -incident_ray(theta_i);

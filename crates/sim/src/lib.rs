@@ -15,14 +15,14 @@
 //! Conventions a model compared with this simulator must share:
 //! - Light arrives from ω_i = (sin θ_i, cos θ_i, 0) (φ_i = 0); a ray at offset h first meets the
 //!   surface at azimuth −asin h, so its mirror direction has φ = −2γ_i (Bravais' Φ(0, h)).
-//! - Positive α tilts the outward scale normal toward +u. With it, the R cone is d'Eon et al. 2014 §2.3's
-//!   θ_cone_R (to its own 0.2° approximation), and TT and TRT shift the other way: d'Eon et al. 2014
-//!   §2.2's derivative list holds with −α (the seed's two sections disagree on the sign; see
-//!   `tests/tilt.rs`).
-//! - Images hold S in sr⁻¹ per unit intercepted power (docs/conventions.md §3); the lobe is the number of
-//!   internal segments, p ≥ 4 in "rest". Losses are reported, not renormalised away: shadowing
-//!   and masking (with rays sent below the macro surface), back-facing scales, and paths cut off
-//!   after [`path::MAX_EVENTS`] surface events.
+//! - Positive α tilts the outward scale normal toward +u. With it, the R cone is d'Eon et al. 2014
+//!   §2.3's θ_cone_R (to its own 0.2° approximation), and TT and TRT shift the other way: d'Eon et
+//!   al. 2014 §2.2's derivative list holds with −α (the seed's two sections disagree on the sign;
+//!   see `tests/tilt.rs`).
+//! - Images hold S in sr⁻¹ per unit intercepted power (docs/conventions.md §3); the lobe is the
+//!   number of internal segments, p ≥ 4 in "rest". Losses are reported, not renormalised away:
+//!   shadowing and masking (with rays sent below the macro surface), back-facing scales, and paths
+//!   cut off after [`path::MAX_EVENTS`] surface events.
 
 mod absorption;
 mod accumulate;

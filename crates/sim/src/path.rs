@@ -161,11 +161,12 @@ mod tests {
         (mean, (var / w).sqrt())
     }
 
-    /// The ground truth at fixed offsets against `cuticle_fiber::models::nonseparable::rough::deflection`'s
-    /// quadrature, where the scales tilt toward the tip and the smooth TT path is blocked from
-    /// h ≈ 0.89 (θ_i = 0.75, α = +2°, β = 0.04): the quadrature's mean Φ(1, h) and spread
-    /// follow the simulated ones at every offset (measured within 0.001 rad and 2.3 %), where
-    /// the smooth path misses by 0.08 rad at h = 0.85 and does not leave at 0.9 and 0.95.
+    /// The ground truth at fixed offsets against
+    /// `cuticle_fiber::models::nonseparable::rough::deflection`'s quadrature, where the scales tilt
+    /// toward the tip and the smooth TT path is blocked from h ≈ 0.89 (θ_i = 0.75, α = +2°, β =
+    /// 0.04): the quadrature's mean Φ(1, h) and spread follow the simulated ones at every offset
+    /// (measured within 0.001 rad and 2.3 %), where the smooth path misses by 0.08 rad at h = 0.85
+    /// and does not leave at 0.9 and 0.95.
     #[test]
     fn tt_azimuth_at_fixed_offsets_follows_the_rough_quadrature() {
         let (theta_i, alpha, beta) = (0.75, 2f64.to_radians(), 0.04);

@@ -1,4 +1,5 @@
-//! `sim.json`: the record of one simulation, with the keys docs/conventions.md §5 shares across commands.
+//! `sim.json`: the record of one simulation, with the keys docs/conventions.md §5 shares across
+//! commands.
 
 use crate::simulate::{LOBE_NAMES, SimResult};
 use glam::DVec3;

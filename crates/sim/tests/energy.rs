@@ -13,8 +13,8 @@
 //! Paths cut off at 100 surface events (rays trapped by total internal reflection, which
 //! roughness makes possible) add 0.02–0.3 % at β = 0.0025 and up to 2.5 % at θ_i = 1.3,
 //! β = 0.02. Tilted scales lose far more: a 4° tilt that pushes TT toward grazing traps it by
-//! total internal reflection (d'Eon et al. 2014 §2.4), and each internal reflection off the tilted normal
-//! pushes it further, until it meets the back of a scale or leaves the macro surface: 6 % at
+//! total internal reflection (d'Eon et al. 2014 §2.4), and each internal reflection off the tilted
+//! normal pushes it further, until it meets the back of a scale or leaves the macro surface: 6 % at
 //! θ_i = 0.25, 28 % at 0.75 and 85 % at 1.1 for α = +4°, β = 0.0025.
 
 use cuticle_sim::{SimParams, SimResult, simulate};

@@ -1,5 +1,5 @@
-//! Tilted scales: for α ≠ 0 and small β the R lobe's θ in each φ column follows d'Eon et al. 2014 §2.3's
-//! θ_cone_R(φ, α, θ_i) = −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)),
+//! Tilted scales: for α ≠ 0 and small β the R lobe's θ in each φ column follows d'Eon et al. 2014
+//! §2.3's θ_cone_R(φ, α, θ_i) = −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)),
 //! which fixes the sign convention: positive α tilts the outward normal toward +u.
 
 use cuticle_fiber::{FiberAngles, LatLongGrid, LatLongImage};
@@ -170,8 +170,8 @@ fn mean_theta_near(img: &LatLongImage, phi: f64, half: f64) -> f64 {
 
 /// TT (near φ = π) and TRT (near φ = 0) shift the other way from R under the same tilt, by the
 /// h = 0 ray trace, within 0.3° for TT and 1° for TRT (whose φ ≈ 0 columns also gather other h).
-/// That is d'Eon et al. 2014 §2.2's derivative list with α of the opposite sign to §2.3's θ_cone_R: the
-/// seed's two sections disagree on the sign of α (§2.2's rotation R[α] gives dx_R/dα = −2z,
+/// That is d'Eon et al. 2014 §2.2's derivative list with α of the opposite sign to §2.3's θ_cone_R:
+/// the seed's two sections disagree on the sign of α (§2.2's rotation R[α] gives dx_R/dα = −2z,
 /// §2.3's closed form +2z), and this crate follows §2.3, as `r_lobe_follows_the_tilted_cone`
 /// checks. The shifts are large (TRT moves 9° at α = 2°), so either sign error fails.
 #[test]

@@ -12,7 +12,8 @@
 //!
 //! ```no_run
 //! use cuticle_validate::{ModelId, SimConfig, compare_config};
-//! let config = SimConfig::read(std::path::Path::new("out/sweep-small/ti0.75_a-2_b0.04_mu0_eta1.55")).unwrap();
+//! let dir = std::path::Path::new("out/sweep-small/ti0.75_a-2_b0.04_mu0_eta1.55");
+//! let config = SimConfig::read(dir).unwrap();
 //! # let sim_images: [cuticle_fiber::LatLongImage; 5] = unimplemented!();
 //! let figures = compare_config(&config, ModelId::NonSeparable, &sim_images).unwrap();
 //! println!("R error {:?}", figures.lobes[0].relative_l1);

@@ -2,7 +2,7 @@
 //! each φ column, weighted by the light in each pixel (S times the pixel's solid angle, channel
 //! mean). Where a model's lobe and the simulation's differ, these say how: a mean that sits
 //! beside the simulated one, a width, or a skew the model's symmetric lobe cannot carry
-//! (`docs/validation.md`, "Where TT's error lives"). `cuticle validate --moments` writes them
+//! (docs/departures/19-tt-sine-lobe.md). `cuticle validate --moments` writes them
 //! for every bright column ([`crate::peak::bright_columns`]) of R, TT and TRT.
 //!
 //! A pixel spreads the light it holds over its height Δθ, which adds Δθ²/12 to the variance

@@ -1,5 +1,5 @@
-//! A model's lobe images on a lat-long grid (docs/conventions.md §4), each pixel the mean of S over the
-//! pixel's solid angle, ∫∫ S cos θ dθ dφ / Ω, so that they compare with the simulator's
+//! A model's lobe images on a lat-long grid (docs/conventions.md §4), each pixel the mean of S over
+//! the pixel's solid angle, ∫∫ S cos θ dθ dφ / Ω, so that they compare with the simulator's
 //! histograms bin for bin. At β = 0.02 the TT lobe's width β(η − 1) ≈ 0.011 rad is a third of a
 //! row (π/100), so S at the pixel centre misses or overstates it; a small product
 //! Gauss–Legendre rule per pixel does not.

@@ -1,9 +1,10 @@
-//! TT near its edge (docs/validation.md, departures 20 and 21): where the
+//! TT near its edge (docs/departures/20-tt-rough-azimuth.md, 21-tt-column-covariance.md): where the
 //! smooth path is blocked or grazes, the light a rough surface lets through leaves at a Φ(1, h)
 //! that keeps moving smoothly with h and spreads over several times β/√2 in φ. The tilted
-//! model's N_TT takes both per offset from `cuticle_fiber::models::nonseparable::rough::deflection`; the paper's
-//! smooth Φ(1, h) with the single variance β²/2 (the tilted model's N_TT before) piles the
-//! edge offsets' light into too few columns.
+//! model's N_TT takes both per offset from
+//! `cuticle_fiber::models::nonseparable::rough::deflection`; the paper's smooth Φ(1, h) with the
+//! single variance β²/2 (the tilted model's N_TT before) piles the edge offsets' light into too few
+//! columns.
 //!
 //! The simulator (`cuticle-sim`, fixed seed) fills 128 columns of 0.049 rad; TT's density per
 //! unit φ in each column (∫ S cos θ dθ) is compared with N_TT read at the θ_d of the column's
@@ -130,10 +131,8 @@ fn edge_mean_gap(theta_i: f64, alpha_deg: f64, beta: f64) -> f64 {
 /// model's column means, the quadrature's pairs binned by the column they reach (departure
 /// 22; their rule a widened lattice since departure 23), follow the simulation's (measured
 /// within 0.0015 rad of this run's small simulation in both; against 10 M paths at θ_i 0.75,
-/// α 2°, β 0.04 within 0.0004 over 1.9 ≤ |φ| ≤ 2.6, `cuticle validate --moments`). Departure 21's
-/// columns, a bivariate normal in (x, φ) per offset, missed by 0.0053 and 0.0031, departure
-/// 19's lobe, taken at the offset whose smooth exit leaves at φ, by 0.036 and 0.0043, and
-/// each bound fails both.
+/// α 2°, β 0.04 within 0.0004 over 1.9 ≤ |φ| ≤ 2.6, `cuticle validate --moments`). The
+/// bounds fail the columns of departures 19 and 21 (docs/departures/22-tt-column-pairs.md).
 #[test]
 fn tt_edge_columns_keep_the_simulated_inclination() {
     for (theta_i, alpha_deg, beta, bound) in [(0.75, 2.0, 0.04, 0.002), (0.25, 0.0, 0.08, 0.0022)] {

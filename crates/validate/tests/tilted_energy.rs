@@ -3,7 +3,8 @@
 //! a fixed seed) within 2 % of the incident power, including the configurations where the
 //! scales lose 30–85 % of it; the paper's form, which loses nothing, misses there by far more.
 //! At β = 0.04 and grazing incidence, where the rough exit's micro-normals totally reflect part
-//! of TT into the long paths, they still follow it (`rough_surface_energies_follow_the_simulation`).
+//! of TT into the long paths, they still follow it
+//! (`rough_surface_energies_follow_the_simulation`).
 //!
 //! The test runs a representative subset of the grid θ_i ∈ {±0.25, ±0.75, ±1.1, ±1.3} ×
 //! α ∈ {±2°, ±4°}: each configuration builds the model's azimuthal table, whose cost at this

@@ -1,7 +1,8 @@
-//! R's longitudinal width through tilted scales (docs/validation.md, departures 10 and 18): at
-//! a fixed azimuth the simulator's R spreads in θ_o as the tilted non-separable model's lobe
-//! says (the moments of the light its rough surface reflects to that azimuth), not as d'Eon et
-//! al. 2014 eq. 6's v_R = 2β²(1 − h²), which is exact only for untilted scales.
+//! R's longitudinal width through tilted scales (docs/departures/10-r-width-tilted.md,
+//! 18-r-column-lobe.md): at a fixed azimuth the simulator's R spreads in θ_o as the tilted
+//! non-separable model's lobe says (the moments of the light its rough surface reflects to that
+//! azimuth), not as d'Eon et al. 2014 eq. 6's v_R = 2β²(1 − h²), which is exact only for untilted
+//! scales.
 //!
 //! The simulator (`cuticle-sim`, fixed seed) fills a lat-long grid with tall columns and short
 //! rows (64 × 512: 0.098 rad in φ, 0.006 rad in θ); in each column where R is bright the

@@ -1,4 +1,4 @@
-//! TT's shape in θ_o at a fixed azimuth (docs/validation.md, departure 19): the simulator's TT
+//! TT's shape in θ_o at a fixed azimuth (docs/departures/19-tt-sine-lobe.md): the simulator's TT
 //! is skewed toward the pole, by −0.3 at θ_i = 0.75, β = 0.08, because its exit sine, not θ_o,
 //! is what the micro-normal slopes move linearly. The tilted non-separable model's lobe, which
 //! lies in the exit sine, carries that skew; a von Mises–Fisher cone with the same mean and

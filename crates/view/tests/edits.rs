@@ -2,8 +2,8 @@
 //! edit or a paint stroke re-runs shading and resolve only — no preparation (drawing, shadows)
 //! and no table but the ones its parameter feeds, and a paint stroke only the painted strands'
 //! points —, a camera move re-runs drawing but not the
-//! shadows, and the preview really is smaller, with fewer lights and quadrature segments. A small scene (300 strands, 160 × 120, 12 SRBF lights,
-//! more than a preview keeps) on the CPU renderer.
+//! shadows, and the preview really is smaller, with fewer lights and quadrature segments. A small
+//! scene (300 strands, 160 × 120, 12 SRBF lights, more than a preview keeps) on the CPU renderer.
 
 use cuticle_groom::Absorption;
 use cuticle_render::{Image, Renderer, Scene, SceneSpec, TableBuilds};

@@ -1,7 +1,7 @@
 //! `cuticle compare A/ B/`: two renders of one scene (output folders of `cuticle render`, any
 //! method) against each other over the hair, by [`cuticle_render::compare`]'s figures. Printed,
-//! and written to `compare.json` in `--out`, with `side_by_side.png`: A's image.png beside B's (each tone-mapped
-//! by its render for the same map, so the two share an exposure).
+//! and written to `compare.json` in `--out`, with `side_by_side.png`: A's image.png beside B's
+//! (each tone-mapped by its render for the same map, so the two share an exposure).
 //!
 //! Hair pixels are those whose coverage is at least `--min-coverage` (default 1: fully covered,
 //! so no background mixes in) in every coverage given: `coverage.exr` of A's folder, of B's, and

@@ -1,5 +1,5 @@
-//! `cuticle env fit`: approximate an environment map by J SRBF lights (Xu et al. 2011 eq. 1) and write
-//! `lights.json` (what the renderer reads), `fit.png` (the map and its reconstruction side by
+//! `cuticle env fit`: approximate an environment map by J SRBF lights (Xu et al. 2011 eq. 1) and
+//! write `lights.json` (what the renderer reads), `fit.png` (the map and its reconstruction side by
 //! side) and `env.json` (every parameter and figure, docs/conventions.md §5).
 
 use crate::output::OutDir;

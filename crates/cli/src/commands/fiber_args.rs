@@ -1,5 +1,5 @@
-//! Flags shared by the commands that evaluate a fiber model (docs/conventions.md §5), and building the
-//! model they name.
+//! Flags shared by the commands that evaluate a fiber model (docs/conventions.md §5), and building
+//! the model they name.
 
 use anyhow::{Context, Result};
 use cuticle_fiber::absorption::mu_a_from_melanin;

@@ -1,5 +1,6 @@
 //! `cuticle lobes`: a fiber model's lobes as lat-long images (docs/conventions.md §4), and with
-//! `--samples` the histogram of its importance samples beside them, like d'Eon et al. 2014 Figure 7.
+//! `--samples` the histogram of its importance samples beside them, like d'Eon et al. 2014 Figure
+//! 7.
 //!
 //! Each pixel (and so each row of `azimuthal.csv`) is the mean of S over the pixel, integrated
 //! on the white furnace's θ panels (`cuticle_fiber::furnace`) cut at the rows' edges, as the

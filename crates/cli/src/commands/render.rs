@@ -1,5 +1,5 @@
-//! `cuticle render`: the hair renderer of Xu et al. 2011 (crate cuticle-render) on a scene from flags
-//! and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear), `coverage.exr` (each
+//! `cuticle render`: the hair renderer of Xu et al. 2011 (crate cuticle-render) on a scene from
+//! flags and/or a TOML file: `image.png` (tone-mapped), `image.exr` (linear), `coverage.exr` (each
 //! pixel's hair coverage, the mask `cuticle compare` reads) and `render.json` with
 //! every parameter and the seconds of each stage; and `cuticle bench render`, the renderer's
 //! benchmark ([`cuticle_render::bench`]) with its `bench.json`.

@@ -1,5 +1,5 @@
-//! `cuticle sim`: one Monte Carlo ground-truth simulation of a rough fiber (d'Eon et al. 2014 §2.1), its
-//! lobe images, `azimuthal.csv` and `sim.json` (docs/conventions.md §5).
+//! `cuticle sim`: one Monte Carlo ground-truth simulation of a rough fiber (d'Eon et al. 2014
+//! §2.1), its lobe images, `azimuthal.csv` and `sim.json` (docs/conventions.md §5).
 
 use crate::latlong_io::{LOBE_FILES, write_images};
 use crate::output::OutDir;

@@ -1,5 +1,5 @@
-//! `cuticle sweep`: the ground-truth simulation over a grid of configurations (d'Eon et al. 2014 §2.1's
-//! suite, the `small` subset, or a JSON file), resumable and shardable.
+//! `cuticle sweep`: the ground-truth simulation over a grid of configurations (d'Eon et al. 2014
+//! §2.1's suite, the `small` subset, or a JSON file), resumable and shardable.
 //!
 //! Each configuration goes to `OUT/<name>/` (e.g. `ti0.75_a-2_b0.04_mu0.25_eta1.55`) with
 //! `R.exr` … `rest.exr`, `total.exr`, `azimuthal.csv` (and PNGs with `--png`) and `sim.json`:

@@ -1,7 +1,7 @@
 //! `cuticle validate`: every simulated configuration of a sweep against each model (issue 3):
 //! `validation.csv` (every configuration, model and lobe), `validation.md` (summary tables and
-//! the per-lobe verdict), `error_vs_theta_i.svg`, comparison sheets like d'Eon et al. 2014 Figure 7 in
-//! `sheets/`, and `validate.json`. With `--noise`, a second sweep of the same configurations
+//! the per-lobe verdict), `error_vs_theta_i.svg`, comparison sheets like d'Eon et al. 2014 Figure 7
+//! in `sheets/`, and `validate.json`. With `--noise`, a second sweep of the same configurations
 //! with another seed, the models are compared with the mean of the two runs and every figure
 //! gets its noise floor and noise-corrected residual (`cuticle_validate::noise`, issue 14).
 //! With `--moments`, `moments.csv` holds each lobe's mean, width and skew in θ per bright φ

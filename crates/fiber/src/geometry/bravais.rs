@@ -5,7 +5,8 @@ use crate::math::{asin_fast, asin_pair, exp_fast, sin_cos_quadrant};
 use std::f64::consts::PI;
 use wide::f64x2;
 
-/// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al. 2003).
+/// Bravais' index for the normal-plane projection, η′ = √(η² − sin²θ) / cos θ (Marschner et al.
+/// 2003).
 pub fn eta_prime(eta: f64, theta: f64) -> f64 {
     let (s, c) = sin_cos_quadrant(theta);
     (eta * eta - s * s).max(0.0).sqrt() / c.abs().max(1e-12)

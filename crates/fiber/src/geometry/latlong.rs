@@ -1,5 +1,5 @@
-//! The lat-long grid every lobe image uses (docs/conventions.md §4): `width` columns over φ ∈ [−π, π),
-//! `height` rows over θ from +π/2 (row 0) down to −π/2; pixel values are S in sr⁻¹.
+//! The lat-long grid every lobe image uses (docs/conventions.md §4): `width` columns over φ ∈ [−π,
+//! π), `height` rows over θ from +π/2 (row 0) down to −π/2; pixel values are S in sr⁻¹.
 
 use glam::DVec3;
 use std::f64::consts::PI;

@@ -1,13 +1,13 @@
-//! Ray directions in Nusselt coordinates (d'Eon et al. 2014 §2.2): a direction relative to a surface
-//! normal is kept as its components (x along the fiber axis, y across it); z = √(1 − x² − y²)
-//! is implied. Tilting the normal by α is the rotation Q; reflection, refraction and the
+//! Ray directions in Nusselt coordinates (d'Eon et al. 2014 §2.2): a direction relative to a
+//! surface normal is kept as its components (x along the fiber axis, y across it); z = √(1 − x² −
+//! y²) is implied. Tilting the normal by α is the rotation Q; reflection, refraction and the
 //! propagation to the next interface are simple maps of (x, y). Square-root inputs are clamped
-//! to be non-negative (d'Eon et al. 2014 §2.4), so a path that would be totally internally reflected
-//! yields |x| > 1 rather than a NaN.
+//! to be non-negative (d'Eon et al. 2014 §2.4), so a path that would be totally internally
+//! reflected yields |x| > 1 rather than a NaN.
 //!
 //! Sign: with the rotations exactly as printed, R's cone comes out as −asin(x cos 2α + z sin 2α)
-//! while d'Eon et al. 2014 §2.3 prints −asin(x cos 2α − z sin 2α) (expanded). The two differ only in
-//! the sign of α; this module takes α in the sign of §2.3's closed form (a scale tilted so that
+//! while d'Eon et al. 2014 §2.3 prints −asin(x cos 2α − z sin 2α) (expanded). The two differ only
+//! in the sign of α; this module takes α in the sign of §2.3's closed form (a scale tilted so that
 //! α > 0 raises the R cone, as in Marschner et al. 2003's α_R = 2α convention with α < 0 for
 //! human hair tilting R toward the root), and tests that both agree.
 
@@ -109,7 +109,8 @@ pub struct AtScale {
 }
 
 /// A scale tilt α with its sine and cosine, found once for every event of a path (a path
-/// through [`crate::models::nonseparable::scales::attenuation`] meets dozens of scales, each turned into and out of).
+/// through [`crate::models::nonseparable::scales::attenuation`] meets dozens of scales, each turned
+/// into and out of).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Tilt {
     sin: f64,

@@ -1,11 +1,11 @@
-//! The longitudinal scattering function M of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 5) and its exact
-//! importance sampling (d'Eon et al. 2013).
+//! The longitudinal scattering function M of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 5) and its
+//! exact importance sampling (d'Eon et al. 2013).
 //!
 //! M(v, θ_cone, θ_o) = csch(1/v)/(2v) · exp(sin θ_cone sin θ_o / v) · I0(cos θ_cone cos θ_o / v)
 //! is the φ-marginal of a von Mises–Fisher distribution of concentration 1/v about the direction
-//! at inclination θ_cone, so ∫ M cos θ_o dθ_o = 1. d'Eon et al. 2014 prints an extra 1/cos θ_o: that
-//! belongs to its normalisation in dθ_o; here S is per steradian (docs/conventions.md §3), where the
-//! cosine is part of the measure, so M carries no such factor.
+//! at inclination θ_cone, so ∫ M cos θ_o dθ_o = 1. d'Eon et al. 2014 prints an extra 1/cos θ_o:
+//! that belongs to its normalisation in dθ_o; here S is per steradian (docs/conventions.md §3),
+//! where the cosine is part of the measure, so M carries no such factor.
 
 use crate::math::vmf::{concentration, mean_cosine};
 use crate::math::{
@@ -233,8 +233,8 @@ impl LongitudinalWidth {
         sample_sin_o(self.v, exp_neg_2_over_v, sin_cone, cos_cone, u1, u2)
     }
 
-    /// M for a cone and an outgoing inclination given by their sines and cosines (d'Eon et al. 2014 eq. 5).
-    /// The exponent's log-space part stays one `exp`; I0 multiplies it (or, above x = 3.75,
+    /// M for a cone and an outgoing inclination given by their sines and cosines (d'Eon et al. 2014
+    /// eq. 5). The exponent's log-space part stays one `exp`; I0 multiplies it (or, above x = 3.75,
     /// e^x joins the exponent and e^{−x} I0 multiplies), I0 by Abramowitz & Stegun 1964
     /// eq. 9.8.1–9.8.2 and the exponential by [`exp_fast`], so no logarithm is taken and no long
     /// series summed. Within 1e-6

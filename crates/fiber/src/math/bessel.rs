@@ -67,8 +67,8 @@ pub const I0_AS_SPLIT: f64 = 3.75;
 
 /// I0(x) for |x| ≤ 3.75 by Abramowitz & Stegun 1964 eq. 9.8.1, a polynomial of degree 6 in
 /// (x/3.75)²: within 2e-7 relative of [`i0_series`] (`i0_as_is_within_its_bound` measures it).
-/// The fast path of [`crate::lobes::longitudinal::LongitudinalWidth::eval`], six multiply-adds where
-/// the series takes up to 38.
+/// The fast path of [`crate::lobes::longitudinal::LongitudinalWidth::eval`], six multiply-adds
+/// where the series takes up to 38.
 #[inline]
 pub fn i0_as(x: f64) -> f64 {
     let t = x * (1.0 / I0_AS_SPLIT);

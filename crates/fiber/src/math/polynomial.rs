@@ -1,5 +1,6 @@
 //! Polynomials by Horner's rule and Estrin's scheme, in one lane or in SIMD lanes of f64 and
-//! f32, and the conversions between those lanes: what every fit in [`crate::math`] is evaluated with.
+//! f32, and the conversions between those lanes: what every fit in [`crate::math`] is evaluated
+//! with.
 
 use wide::{f32x4, f64x2, f64x4};
 

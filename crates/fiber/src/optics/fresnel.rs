@@ -24,8 +24,8 @@ pub fn fresnel_dielectric(cos_i: f64, eta: f64) -> f64 {
 }
 
 /// Marschner 2003's oblique Fresnel factor: the projected 2D problem at angle `gamma` with the
-/// perpendicular component from η′ and the parallel component from η″ (Marschner et al. 2003 "Definition
-/// of F"). `eta_prime`, `eta_double_prime` below 1 describe light leaving the fiber.
+/// perpendicular component from η′ and the parallel component from η″ (Marschner et al. 2003
+/// "Definition of F"). `eta_prime`, `eta_double_prime` below 1 describe light leaving the fiber.
 pub fn fresnel_oblique(eta_prime: f64, eta_double_prime: f64, gamma: f64) -> f64 {
     let (sin_i, cos_i) = sin_cos_quadrant(gamma);
     fresnel_oblique_at(eta_prime, eta_double_prime, sin_i, cos_i.abs())

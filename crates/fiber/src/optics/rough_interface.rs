@@ -1,17 +1,17 @@
 //! The Fresnel factors of a rough dielectric interface, averaged over its micro-normals: the
 //! albedos ρ_r(v) and ρ_t(v) of Walter et al. 2007's rough dielectric BSDF (eqs. 20–21, with the
-//! Beckmann D and the separable Smith G of [`crate::optics::beckmann`]) for light arriving at the angle
-//! θ_v to the (shading) normal, from outside (relative index η) and from inside (1/η). It is the
-//! interface `cuticle-sim` traces, seen in the mean.
+//! Beckmann D and the separable Smith G of [`crate::optics::beckmann`]) for light arriving at the
+//! angle θ_v to the (shading) normal, from outside (relative index η) and from inside (1/η). It is
+//! the interface `cuticle-sim` traces, seen in the mean.
 //!
 //! Why the fiber models need it: inside a fiber light meets the surface at the same angle at
 //! every event (Bravais), and at grazing incidence that angle comes close to the critical angle
 //! (38° at θ_i = 1.3 against 40° for η = 1.55). A smooth surface lets it all out; micro-normals
 //! a few degrees off totally reflect a part of it back inside at every exit, which moves power
 //! from TT and TRT to the long paths. The smooth Fresnel factor of d'Eon et al. 2011's A(p, h)
-//! misses this; [`crate::models::nonseparable::scales::attenuation`] takes A(p, h) event by event with ρ_r and ρ_t in
-//! place of F and 1 − F. 1 − ρ_r − ρ_t is what the micro-surface shadows (Smith's G) and what a
-//! micro-normal sends to the wrong side.
+//! misses this; [`crate::models::nonseparable::scales::attenuation`] takes A(p, h) event by event
+//! with ρ_r and ρ_t in place of F and 1 − F. 1 − ρ_r − ρ_t is what the micro-surface shadows
+//! (Smith's G) and what a micro-normal sends to the wrong side.
 //!
 //! The mean is taken over the slopes, which are normal with variance β²/2 per axis (D(m) m·n
 //! dω_m is that density in slope space), on a Fibonacci lattice of slopes drawn from a wider
@@ -35,7 +35,7 @@ const ENTRIES: usize = 1024;
 /// The directions [`RoughInterface::refractions`] gives: the micro-normals of a Fibonacci
 /// lattice (`lattice_slopes`). A product grid of 4² equal-probability slopes stopped at
 /// 1.15 standard deviations per axis, short of the steep entries whose light alone leaves
-/// where TT's exit is past the critical angle (docs/validation.md, departure 26).
+/// where TT's exit is past the critical angle (docs/departures/26-tt-grazing-energy.md).
 pub const REFRACTIONS: usize = 21;
 
 /// How much wider than the slopes' own normal law the lattice's slopes are drawn

@@ -1,6 +1,6 @@
-//! Fitting an environment map with J SRBF lights (Xu et al. 2011 eq. 1): minimise the solid-angle-weighted
-//! squared error Σ_p Δω_p ‖L(ω_p) − Σ_j L_j G(ω_p; ω_j, λ_j)‖² over the sphere, as Tsai & Shih
-//! (2006) and Ren et al. (2010) do.
+//! Fitting an environment map with J SRBF lights (Xu et al. 2011 eq. 1): minimise the
+//! solid-angle-weighted squared error Σ_p Δω_p ‖L(ω_p) − Σ_j L_j G(ω_p; ω_j, λ_j)‖² over the
+//! sphere, as Tsai & Shih (2006) and Ren et al. (2010) do.
 //!
 //! 1. The map is area-averaged down to `fit_width × fit_width/2`, and the cells hiding the most
 //!    detail (a compact sun, sharp edges) are split down to single pixels within a budget of

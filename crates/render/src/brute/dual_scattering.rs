@@ -1,6 +1,6 @@
 //! Multiple scattering of the brute-force reference: the dual-scattering terms of
-//! [`crate::srbf::dual_scattering`] (Zinke et al. 2008; Xu et al. 2011 §4.3) for directional lights, from
-//! the exact functions instead of circular Gaussians.
+//! [`crate::srbf::dual_scattering`] (Zinke et al. 2008; Xu et al. 2011 §4.3) for directional
+//! lights, from the exact functions instead of circular Gaussians.
 //!
 //! A directional light k (angles θ_k, φ_k in the fiber frame, power E_k = L Δω, direct
 //! transmittance T̃_k) is an SRBF in the limit λ → 0: E_k stands for L_j ∫G_j dω, and its

@@ -6,7 +6,8 @@
 use crate::angles::{deflection, deflection_slope, eta_prime, sigma_prime, wrap_pi};
 use crate::fresnel::oblique;
 
-/// A_t(θ_d, h) of mode p (0 = R, 1 = TT, 2 = TRT) for one absorption channel (Xu et al. 2011 eq. 10).
+/// A_t(θ_d, h) of mode p (0 = R, 1 = TT, 2 = TRT) for one absorption channel (Xu et al. 2011 eq.
+/// 10).
 pub fn attenuation(p: u32, eta: f64, theta_d: f64, mu_a: f64, h: f64) -> f64 {
     let f = oblique(eta, theta_d, h);
     if p == 0 {

@@ -2,7 +2,8 @@
 //! multiple scattering: Xu et al. 2011 eq. 28,
 //! 𝒩^G_p(δ, θ_d) = (1/π) ∫_{δ−π/2}^{δ+π/2} N_p(θ_d, φ) dφ,
 //! with the exact N_p of eqs. 8–10 ([`crate::brute::exact_azimuthal`]) where the SRBF path uses its
-//! circular-Gaussian fits ([`crate::tables::half_circle`]). By the change of variable φ = Φ(p, h) of
+//! circular-Gaussian fits ([`crate::tables::half_circle`]). By the change of variable φ = Φ(p, h)
+//! of
 //! [`crate::tables::back_scattering`], 𝒩^G_p = (1/π) · ½ ∫ A_p(θ_d, h) dh over the offsets h
 //! whose exact deflection lands within π/2 of δ: exact through TRT's caustics, where N_p itself
 //! is singular.

@@ -599,7 +599,8 @@ pub fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> V
     out
 }
 
-/// The SRBF lights in world space, the wide ones split into sub-lights ([`crate::frame::sub_lights`]).
+/// The SRBF lights in world space, the wide ones split into sub-lights
+/// ([`crate::frame::sub_lights`]).
 pub fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
     split_wide(&scene.lights, scene.spec.shadows.split_bandwidth)
         .iter()

@@ -1,4 +1,5 @@
-//! Self-shadowing: the effective transmittance T̃(ω_j, λ_j) of each SRBF light (Xu et al. 2011 eq. 2).
+//! Self-shadowing: the effective transmittance T̃(ω_j, λ_j) of each SRBF light (Xu et al. 2011 eq.
+//! 2).
 //!
 //! Choice: a deep opacity map (Yuksel & Keyser 2008) per light, orthographic along the light,
 //! whose layers are box-filtered with a summed-area table to the light's bandwidth — the idea of

@@ -24,8 +24,8 @@ pub const PREVIEW_QUADRATURE: usize = 2;
 pub const PREVIEW_TABLE_NODES: usize = 16;
 
 /// The sub-lights' width of the split that is merged into a preview's lights: the pieces the
-/// clusters are made of, kept at what the merge was measured with (BENCHMARKS.md "The window"), whatever
-/// the full frame's [`crate::ShadowOptions::split_bandwidth`] (finer pieces make no better
+/// clusters are made of, kept at what the merge was measured with (BENCHMARKS.md "The window"),
+/// whatever the full frame's [`crate::ShadowOptions::split_bandwidth`] (finer pieces make no better
 /// eight lights).
 pub const PREVIEW_SPLIT_BANDWIDTH: f64 = 0.5;
 

@@ -527,7 +527,8 @@ mod tests {
     /// The TT pair against the exact N_TT at the paper's θ_d = 0, π/6, π/3 (Fig. 3a), for light
     /// and brown absorption: value at π within 5 % (exact where the pair opens; measured 3.5 % off
     /// where N_TT is peakier than a Gaussian of its circular mean and the pair closes), energy
-    /// within 3 %, L1 shape error below 12 % of the energy, and at most 6 % of the energy beyond the deflection's limit
+    /// within 3 %, L1 shape error below 12 % of the energy, and at most 6 % of the energy beyond
+    /// the deflection's limit
     /// |φ − π| = π − 2 asin(1/η′), where the exact N_TT is 0 (Xu et al. 2011 eq. 16's single
     /// Gaussian of that value and energy put 15–30 % there).
     #[test]

@@ -1,6 +1,6 @@
 //! 1D circular Gaussians g^c(x; μ, λ) = exp(2(cos(x − μ) − 1)/λ²) (Xu et al. 2011 Table 1), their
-//! integrals over the circle and the closed-form integral of a product of two (Xu et al. 2011 §4.2.3,
-//! supplemental §5). With κ = 2/λ², κ₁ cos(x − μ₁) + κ₂ cos(x − μ₂) = κ cos(x − μ) with
+//! integrals over the circle and the closed-form integral of a product of two (Xu et al. 2011
+//! §4.2.3, supplemental §5). With κ = 2/λ², κ₁ cos(x − μ₁) + κ₂ cos(x − μ₂) = κ cos(x − μ) with
 //! κ e^{iμ} = κ₁ e^{iμ₁} + κ₂ e^{iμ₂}, and ∫_{−π}^{π} e^{κ cos x} dx = 2π I₀(κ).
 
 use std::f64::consts::PI;
@@ -65,8 +65,8 @@ pub fn integral(lambda: f64) -> f64 {
 }
 
 /// ∫_{−π}^{π} g^c(x; 0, λ₁) g^c(δ − x; μ₂, λ₂) dx: the inner integral 𝒩 of an azimuthal lobe
-/// g^c(φ; μ₂, λ₂) against a light's azimuthal Gaussian at offset δ = φ_o − φ_j (Xu et al. 2011 eq. 12).
-/// As a function of x the second factor is centred at δ − μ₂, so the product has
+/// g^c(φ; μ₂, λ₂) against a light's azimuthal Gaussian at offset δ = φ_o − φ_j (Xu et al. 2011 eq.
+/// 12). As a function of x the second factor is centred at δ − μ₂, so the product has
 /// κ = |κ₁ + κ₂ e^{i(δ − μ₂)}| and integral 2π exp(ln I₀(κ) − κ₁ − κ₂).
 pub fn convolve(lambda1: f64, delta: f64, mu2: f64, lambda2: f64) -> f64 {
     convolve_sharp(sharpness(lambda1), sharpness(lambda2), (delta - mu2).cos())
@@ -80,8 +80,8 @@ pub fn convolve_sharp(k1: f64, k2: f64, c: f64) -> f64 {
 }
 
 /// The bandwidth λ whose circular Gaussian integrates to `area` over the circle: the exact
-/// inverse of [`integral`] (Xu et al. 2011 eq. 17 uses its narrow limit λ = area/√π, whose energy is
-/// off by 5 % at λ ≈ 0.8, 9 % at λ = 1 and 17 % at λ = 1.5). By a table of the correction
+/// inverse of [`integral`] (Xu et al. 2011 eq. 17 uses its narrow limit λ = area/√π, whose energy
+/// is off by 5 % at λ ≈ 0.8, 9 % at λ = 1 and 17 % at λ = 1.5). By a table of the correction
 /// λ/(area/√π) over ln(area/√π), built once; areas at or beyond 2π (a uniform lobe) give the
 /// widest bandwidth, 20.
 pub fn bandwidth_for_integral(area: f64) -> f64 {

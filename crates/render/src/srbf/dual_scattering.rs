@@ -1,10 +1,11 @@
-//! Multiple scattering by dual scattering under SRBF lights (Xu et al. 2011 §4.3, Zinke et al. 2008).
+//! Multiple scattering by dual scattering under SRBF lights (Xu et al. 2011 §4.3, Zinke et al.
+//! 2008).
 //!
 //! Each light j of energy E_j = L_j ∫G_j dω reaches a point two ways: unscattered with share T̃
 //! (single scattering's, [`crate::srbf::single_scattering`]) and forward-scattered with share
-//! d_f (T_f − T̃)⁺ ([`crate::srbf::forward_scattering`]), spread by ψ_f = s̃_f g^u(θ_i; θ_j, σ_f)/cos θ_j
-//! (eq. 5), s̃_f = 1/π over the half circle around φ_j and σ_f² = λ_j²/2 + σ̄_f² (the SRBF's
-//! longitudinal variance plus the spread). In the crate's units (lib.rs) they add
+//! d_f (T_f − T̃)⁺ ([`crate::srbf::forward_scattering`]), spread by ψ_f = s̃_f g^u(θ_i; θ_j,
+//! σ_f)/cos θ_j (eq. 5), s̃_f = 1/π over the half circle around φ_j and σ_f² = λ_j²/2 + σ̄_f² (the
+//! SRBF's longitudinal variance plus the spread). In the crate's units (lib.rs) they add
 //! - the global term (eqs. 27–28): ℳ^G_t = (1/cos θ_j) ∫ g^u(θ_i; θ_j, σ_f) ½M_t(θ_h)
 //!   (cos²θ_i/cos²θ_d) 𝒩^G_t(φ_o − φ_j, θ_d) dθ_i, with 𝒩^G_t closed form from the circular
 //!   Gaussians and the half-circle tables ([`crate::tables::half_circle`]);
@@ -18,8 +19,8 @@
 //!   F_direct also back-scatters, with σ = λ_j/√2).
 //!
 //! Where the paper divides by cos θ_j (the narrow limit of the spread's normalisation) we divide
-//! by the exact Z(θ_j, σ) of [`crate::tables::spread`]: cos θ_j overstated a wide sky above hanging hair
-//! twice over against the brute force.
+//! by the exact Z(θ_j, σ) of [`crate::tables::spread`]: cos θ_j overstated a wide sky above hanging
+//! hair twice over against the brute force.
 //!
 //! Ā_b, Δ̄_b, σ̄_b are taken at the θ_d of the light's centre, (θ_o − θ_j)/2 (eqs. 29–31 as
 //! printed, Ā_b at each quadrature node and Δ̃_b, σ̃_b averaged over θ_j ± σ, were tried: the

@@ -1,8 +1,9 @@
-//! Forward scattering along a light's shadow path (Zinke et al. 2008 §4.1; Xu et al. 2011 eqs. 3, 5).
+//! Forward scattering along a light's shadow path (Zinke et al. 2008 §4.1; Xu et al. 2011 eqs. 3,
+//! 5).
 //!
-//! Sparse sampling of the hair volume: the deep opacity map of [`crate::frame::shadows`] already gives,
-//! for every light and visible point, the optical depth n = −ln T̃ in front of the point, the
-//! expected number of fibers a ray toward the light crosses (optical depth counts projected
+//! Sparse sampling of the hair volume: the deep opacity map of [`crate::frame::shadows`] already
+//! gives, for every light and visible point, the optical depth n = −ln T̃ in front of the point,
+//! the expected number of fibers a ray toward the light crosses (optical depth counts projected
 //! fiber area per texel area). With every crossed fiber at the point's own inclination (forward
 //! scattering keeps θ), Zinke's product over the k fibers a ray actually crosses,
 //! T_f = ∏ ā_f = ā_f^k, and sum σ̄_f² = k β̄_f², are averaged here over the number of

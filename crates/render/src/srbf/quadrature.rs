@@ -18,8 +18,8 @@ pub struct Window {
 }
 
 impl Window {
-    /// The product of an SRBF's longitudinal Gaussian exp(−(x − θ_j)²/λ²) (Xu et al. 2011 eq. 11) and
-    /// the unit normal density of mean `mean`, deviation `dev`.
+    /// The product of an SRBF's longitudinal Gaussian exp(−(x − θ_j)²/λ²) (Xu et al. 2011 eq. 11)
+    /// and the unit normal density of mean `mean`, deviation `dev`.
     pub fn product(theta_j: f64, lambda: f64, mean: f64, dev: f64) -> Self {
         let va = 0.5 * lambda * lambda;
         let vb = dev * dev;
@@ -162,9 +162,9 @@ const NEGLIGIBLE_SCALE: f64 = 1e-12;
 
 impl Window {
     /// ∫ window · n(θ_i) cos²θ_i / cos²θ_d dθ_i with θ_d = (θ_o − θ_i)/2: the outer integral of
-    /// Xu et al. 2011 eqs. 11, 27 and 29, whose factor cos²θ_i/cos²θ_d every mode shares. A negligible
-    /// window gives zero, and so does a grazing sample (cos θ_i ≤ 1e-6, where n may not be
-    /// defined).
+    /// Xu et al. 2011 eqs. 11, 27 and 29, whose factor cos²θ_i/cos²θ_d every mode shares. A
+    /// negligible window gives zero, and so does a grazing sample (cos θ_i ≤ 1e-6, where n may not
+    /// be defined).
     pub fn integrate_incident(
         &self,
         m: usize,

@@ -1,6 +1,6 @@
-//! The averaged scattering functions of dual scattering (Zinke et al. 2008 §4; Xu et al. 2011 §4.3),
-//! tabulated over θ_d × absorption and rebuilt whenever a hair parameter changes (Xu et al. 2011 §5:
-//! "the 1D textures are computed and updated on the fly").
+//! The averaged scattering functions of dual scattering (Zinke et al. 2008 §4; Xu et al. 2011
+//! §4.3), tabulated over θ_d × absorption and rebuilt whenever a hair parameter changes (Xu et al.
+//! 2011 §5: "the 1D textures are computed and updated on the fly").
 //!
 //! For one absorption channel, the forward and backward attenuations of mode p are the shares
 //! of its energy leaving into the forward (|φ| > π/2) and backward (|φ| < π/2) half circle,
@@ -35,8 +35,8 @@
 //! weigh the local term (Xu et al. 2011 eq. 4) and enters no table.
 //!
 //! The table axes are θ_d ∈ [0, 1.5] (64 nodes) and x = ln(1 + μ_a/0.02) for μ_a ∈ [0, 1000]
-//! (64 nodes), so that per-strand absorption needs no rebuild; entries are the smooth moments [ā_f, ā_b, α_f, α_b, β_f², β_b²], and the
-//! combinations above are formed after interpolation.
+//! (64 nodes), so that per-strand absorption needs no rebuild; entries are the smooth moments [ā_f,
+//! ā_b, α_f, α_b, β_f², β_b²], and the combinations above are formed after interpolation.
 
 use crate::angles::{HALF_PI, deflection, eta_prime, wrap_pi};
 use crate::brute::exact_azimuthal::attenuation;

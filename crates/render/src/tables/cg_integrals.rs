@@ -3,8 +3,8 @@
 //!   Z(λ′) = ∫ g^c(φ′; 0, λ′) dφ′ (so each entry is a weighted mean of |cos^k|, smooth in ln λ′),
 //!   with ln Z beside it; λ′ ∈ [0.001, 10] logarithmically (128 nodes) × δ ∈ [0, π] (65 nodes,
 //!   the paper's 64 over the half circle doubled by the symmetry 𝒞_k(λ′, −δ) = 𝒞_k(λ′, δ));
-//! - ℋ_k^TT(η, θ_d) = ∫_{−1}^{1} (1 − F)² h^k dh and ℋ_k^TRT(η, θ_d) = ∫_{−1}^{1} (1 − F)² F h^k dh,
-//!   k = 0, 2, 4 (eqs. 19, 23), η ∈ [1, 10] logarithmically (128 nodes) × θ_d ∈ [0, 1.5] (64);
+//! - ℋ_k^TT(η, θ_d) = ∫_{−1}^{1} (1 − F)² h^k dh and ℋ_k^TRT(η, θ_d) = ∫_{−1}^{1} (1 − F)² F h^k
+//!   dh, k = 0, 2, 4 (eqs. 19, 23), η ∈ [1, 10] logarithmically (128 nodes) × θ_d ∈ [0, 1.5] (64);
 //! - N_R's Fresnel factor as a quintic in cos γ ([`r_fresnel`]; Xu et al. 2011 eq. 13 has
 //!   Schlick's), over the same (η, θ_d) grid.
 

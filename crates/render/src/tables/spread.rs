@@ -1,7 +1,7 @@
 //! The normalisation of a light spread in inclination: dual scattering distributes a light's
 //! energy over incident directions as g^u(θ; θ_j, σ) s(φ) / Z (Zinke et al. 2008's spread
-//! function ψ_f, Xu et al. 2011 eq. 5), with Z making ∫ g^u s dω / Z = 1 (dω = cos θ dθ dφ, ∫ s dφ =
-//! 1). Zinke and Xu et al. 2011 write Z = cos θ_j, its narrow limit; for a wide spread near the
+//! function ψ_f, Xu et al. 2011 eq. 5), with Z making ∫ g^u s dω / Z = 1 (dω = cos θ dθ dφ, ∫ s dφ
+//! = 1). Zinke and Xu et al. 2011 write Z = cos θ_j, its narrow limit; for a wide spread near the
 //! fiber's axis (a sky straight above hanging hair) cos θ_j → 0 while the spread still reaches
 //! inclinations with cos θ > 0, and the narrow limit overstates the light (tests/multiple.rs
 //! measures both against the brute force; the figures are in BENCHMARKS.md). This table holds

@@ -5,10 +5,10 @@
 //!
 //! d'Eon et al. 2014 §2.2 follows a path in Nusselt coordinates, where the exit direction's
 //! x = sin θ_o is, to first order, linear in the slope of each scale the path meets: Gaussian
-//! slopes give a Gaussian x. The von Mises–Fisher lobe of [`crate::lobes::longitudinal`] with the same
-//! mean and variance of x is Gaussian in θ_o instead, symmetric about its cone; the arcsine
+//! slopes give a Gaussian x. The von Mises–Fisher lobe of [`crate::lobes::longitudinal`] with the
+//! same mean and variance of x is Gaussian in θ_o instead, symmetric about its cone; the arcsine
 //! that takes a symmetric x to θ_o skews it toward the pole, as the simulated TT is
-//! (docs/validation.md, departure 19, has the simulated skews).
+//! (docs/departures/19-tt-sine-lobe.md).
 //!
 //! Like M, it is a density per unit sin θ_o (∫ M cos θ_o dθ_o = 1), so the truncation is its
 //! only normalisation:

@@ -5,19 +5,19 @@
 //!
 //! # The near-field model
 //! For the given direction ω_i and the offset h ∈ [−1, 1] at which the ray along −ω_i meets the
-//! fiber (docs/conventions.md §2; the sign is fixed by [`crate::geometry::bravais::azimuthal_deflection`]:
-//! Φ(0, h) = −2 asin h, i.e. h is minus the hit's offset along w = u × v when v is ω_i's
-//! projection on the normal plane — the trace crate's geometry test checks this), lobes
-//! p = 0 (R), 1 (TT), 2 (TRT) and the remainder p ≥ 3 are
+//! fiber (docs/conventions.md §2; the sign is fixed by
+//! [`crate::geometry::bravais::azimuthal_deflection`]: Φ(0, h) = −2 asin h, i.e. h is minus the
+//! hit's offset along w = u × v when v is ω_i's projection on the normal plane — the trace crate's
+//! geometry test checks this), lobes p = 0 (R), 1 (TT), 2 (TRT) and the remainder p ≥ 3 are
 //!
 //!   S_h(ω_i, ω_o) = Σ_p M_p(θ_o) A_p(θ_i, h) N_p(φ; h), φ = φ_o − φ_i,
 //!
-//! - M_p the von Mises–Fisher marginal of d'Eon et al. 2011 ([`crate::lobes::longitudinal::LongitudinalWidth`]) about the
-//!   cone −θ_i + 2α (R), −θ_i − α (TT), −θ_i − 4α (TRT), −θ_i (remainder), with variances
-//!   v_R = (0.726 β_m + 0.812 β_m² + 3.7 β_m²⁰)², v_TT = v_R/4, v_TRT = v_rest = 4 v_R
-//!   (Chiang et al. 2016 eq. 7, §4.1's tilts). pbrt-v4 writes the tilt as a shift of the given
-//!   inclination; that is the same cone, so each M_p has unit integral ∫ M_p cos θ_o dθ_o = 1
-//!   for any α.
+//! - M_p the von Mises–Fisher marginal of d'Eon et al. 2011
+//!   ([`crate::lobes::longitudinal::LongitudinalWidth`]) about the cone −θ_i + 2α (R), −θ_i − α
+//!   (TT), −θ_i − 4α (TRT), −θ_i (remainder), with variances v_R = (0.726 β_m + 0.812 β_m² + 3.7
+//!   β_m²⁰)², v_TT = v_R/4, v_TRT = v_rest = 4 v_R (Chiang et al. 2016 eq. 7, §4.1's tilts).
+//!   pbrt-v4 writes the tilt as a shift of the given inclination; that is the same cone, so each
+//!   M_p has unit integral ∫ M_p cos θ_o dθ_o = 1 for any α.
 //! - A_p the attenuation of [`crate::optics::attenuation::attenuation`] (exact 3D Fresnel factor,
 //!   T = exp(−2 σ_a cos γ_t / cos θ_t)); the remainder is Σ_{p≥3} A_p (Chiang et al. 2016 eq. 6).
 //! - N_p(φ; h) the logistic of scale s = √(π/8)(0.265 β_n + 1.194 β_n² + 5.372 β_n²²)
@@ -31,8 +31,8 @@
 //! A ray from ω_i meets the fiber at h uniformly distributed across its projected width, so the
 //! fraction of intercepted power leaving per steradian is the average S = ½ ∫ S_h dh, which is
 //! what [`FiberModel::eval`] and [`FiberModel::pdf`] return (a composite Gauss–Legendre rule in
-//! γ_i = asin h, panels following the logistic's width, as [`crate::models::deon2011::azimuthal`] does for d'Eon
-//! 2011). The path tracer knows the offset of every hit and calls the near-field
+//! γ_i = asin h, panels following the logistic's width, as [`crate::models::deon2011::azimuthal`]
+//! does for d'Eon 2011). The path tracer knows the offset of every hit and calls the near-field
 //! [`FiberModel::eval_at`], [`FiberModel::pdf_at`] and [`FiberModel::sample_at`] instead, with
 //! ω_i the direction the ray arrived from; averaged over the hits a pixel sees, that is the
 //! far-field model again.

@@ -440,8 +440,8 @@ mod tests {
     }
 
     /// Why the integral is taken in γ with panels: against a reference of 4096 panels, the
-    /// composite rule stays exact while d'Eon et al. 2014's fixed 70-point rule in h rings for narrow
-    /// lobes (measured: 17 % of the peak at β = 0.02).
+    /// composite rule stays exact while d'Eon et al. 2014's fixed 70-point rule in h rings for
+    /// narrow lobes (measured: 17 % of the peak at β = 0.02).
     #[test]
     fn gamma_panels_converge_where_a_fixed_rule_in_h_rings() {
         for (beta, bound_ours, bound_fixed) in [(0.02, 1e-6, 0.1), (0.3, 1e-6, 0.0)] {

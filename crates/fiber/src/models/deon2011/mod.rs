@@ -1,9 +1,9 @@
-//! The energy-conserving model of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 4–5), with the importance
-//! sampling of d'Eon et al. 2013.
+//! The energy-conserving model of d'Eon et al. 2011 (d'Eon et al. 2014 eq. 4–5), with the
+//! importance sampling of d'Eon et al. 2013.
 //!
 //! Each lobe p is M(v_p, θ_cone,p, θ_o) · N_p(φ). The lobes are separable: v_p and the cone
-//! shift are constants of the fiber. They are the first-order Nusselt perturbations of d'Eon et al. 2014
-//! §2.2 at normal incidence (h = 0, θ = 0), so that the model and the non-separable one agree
+//! shift are constants of the fiber. They are the first-order Nusselt perturbations of d'Eon et al.
+//! 2014 §2.2 at normal incidence (h = 0, θ = 0), so that the model and the non-separable one agree
 //! there: with Beckmann roughness β the per-axis micro-normal slope deviation is β/√2, and
 //! the lobe widths are √v = β√2 (R), β(η − 1) (TT), β(2η − 1) (TRT), β(3η − 1) (TRRT and rest);
 //! the cone shifts are 2α (R), −2(η − 1)α (TT), −(4η − 2)α (TRT), −(6η − 2)α (TRRT, rest).

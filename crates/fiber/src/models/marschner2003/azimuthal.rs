@@ -33,10 +33,11 @@ impl Interface {
         }
     }
 
-    /// A(p, h) at h = sin γ_i (Marschner et al. 2003 "Finding A", with docs/conventions.md §8's transmittance; T^p
-    /// as one exponential of the p segments' summed path).
+    /// A(p, h) at h = sin γ_i (Marschner et al. 2003 "Finding A", with docs/conventions.md §8's
+    /// transmittance; T^p as one exponential of the p segments' summed path).
     /// One sine and cosine of γ_i serve both Fresnel factors: sin γ_t = sin γ_i / η′ (the
-    /// same γ_t as [`crate::geometry::bravais::gamma_t`]) and the chord's cos γ_t follow without trigonometry.
+    /// same γ_t as [`crate::geometry::bravais::gamma_t`]) and the chord's cos γ_t follow without
+    /// trigonometry.
     pub(super) fn attenuation(&self, p: u32, gamma_i: f64) -> DVec3 {
         let (sin_i, cos_i) = sin_cos_quadrant(gamma_i);
         let f = fresnel_oblique_at(self.eta_prime, self.eta_double_prime, sin_i, cos_i.abs());

@@ -10,8 +10,9 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// (`falling_root_density_matches_the_root_search` checks it down to η′ = 1.16, where Φ̂'
 /// nearly vanishes at γ = 0).
 const NEWTON_LAST_STEP: f64 = 1e-8;
-/// Newton steps (with bisection where one leaves the bracket) before [`CubicDeflection::falling_root`]
-/// settles for its last iterate: bisection alone reaches 1e-15 of π within 52.
+/// Newton steps (with bisection where one leaves the bracket) before
+/// [`CubicDeflection::falling_root`] settles for its last iterate: bisection alone reaches 1e-15 of
+/// π within 52.
 const MAX_NEWTON_STEPS: usize = 64;
 
 /// Φ̂(p, γ) = (6pc/π − 2)γ − (8pc/π³)γ³ + pπ with c = asin(1/η′) (Marschner 2003's cubic

@@ -1,28 +1,30 @@
 //! The hair scattering model of Marschner, Jensen, Cammarano, Worley and Hanrahan 2003, *Light
-//! scattering from human hair fibers* (docs/references.md lists the survey we read it from), with its TRT caustic treatment and
-//! eccentricity, and an exact importance sampling.
+//! scattering from human hair fibers* (docs/references.md lists the survey we read it from), with
+//! its TRT caustic treatment and eccentricity, and an exact importance sampling.
 //!
 //! # The model
-//! Three lobes p = 0 (R), 1 (TT), 2 (TRT), each M_p(θ_h) N_p(φ) / cos²θ_d (Marschner et al. 2003 "The
-//! Grand Result"; Marschner 2003's practical model):
+//! Three lobes p = 0 (R), 1 (TT), 2 (TRT), each M_p(θ_h) N_p(φ) / cos²θ_d (Marschner et al. 2003
+//! "The Grand Result"; Marschner 2003's practical model):
 //! - M_p is a unit-integral Gaussian in θ_h = (θ_i + θ_o)/2 with shift α_p and width β_p:
 //!   α_TT = −α_R/2, α_TRT = −3α_R/2, β_TT = β_R/2, β_TRT = 2β_R (Marschner 2003 Table 1).
 //! - N_p(φ) = Σ A(p, h) / |2 dΦ̂/dh| over every root γ_i ∈ [−π/2, π/2] of
 //!   Φ̂(p, γ_i) = (6pc/π − 2)γ_i − 8pc/π³ γ_i³ + pπ ≡ φ (mod 2π), c = asin(1/η′),
-//!   η′ = η′(η, θ_d) (Marschner 2003's cubic approximation; Marschner et al. 2003 "Finding γ_i"). The cubic has one or three real
-//!   roots; those in [−π/2, π/2] are what count: TRT has three between its caustics ±φ_c and
-//!   one beyond them, except for η′ < 1.556, where φ_c lies beyond the edge ray
+//!   η′ = η′(η, θ_d) (Marschner 2003's cubic approximation; Marschner et al. 2003 "Finding γ_i").
+//!   The cubic has one or three real roots; those in [−π/2, π/2] are what count: TRT has three
+//!   between its caustics ±φ_c and one beyond them, except for η′ < 1.556, where φ_c lies beyond
+//!   the edge ray
 //!   |Φ̂(2, ±π/2) − 2π| = |4c − π|: there two remain between the edge ray and φ_c, and none
 //!   beyond φ_c. Φ̂ is within 0.019 rad (TT) and 0.038 rad (TRT) of the exact Φ for every
 //!   η′ ≥ 1.55 (0.037 and 0.075 at η′ = 1.4; `cubic_deflection_tracks_the_exact_one`).
 //! - A(0, h) = F(η′, η″, γ_i) and A(p, h) = (1 − F(η′, η″, γ_i))² F(1/η′, 1/η″, γ_t)^{p−1} T^p
 //!   with the oblique Fresnel factor and T = exp(−2 μ_a cos γ_t / cos θ_t), the chord of the
-//!   unit circle (docs/conventions.md §8 erratum; Marschner et al. 2003 prints exp(−μ_a(2 + 2 cos 2γ_t))). The whole
-//!   azimuthal part is a function of θ_d, as in Marschner's paper, so θ_t is the refracted
-//!   inclination of the difference angle, sin θ_t = sin θ_d / η (equal to θ_i's on the specular
-//!   cone), and the model stays reciprocal.
+//!   unit circle (docs/conventions.md §8 erratum; Marschner et al. 2003 prints exp(−μ_a(2 + 2 cos
+//!   2γ_t))). The whole azimuthal part is a function of θ_d, as in Marschner's paper, so θ_t is the
+//!   refracted inclination of the difference angle, sin θ_t = sin θ_d / η (equal to θ_i's on the
+//!   specular cone), and the model stays reciprocal.
 //! - TRT replaces its caustic singularities by Gaussian glints (Marschner 2003's N_TRT listing, see
-//!   [`Caustic`]), and uses η*(φ_h) for an elliptical fiber (Xu et al. 2011 eq. 24, see [`eta_star`]).
+//!   [`Caustic`]), and uses η*(φ_h) for an elliptical fiber (Xu et al. 2011 eq. 24, see
+//!   [`eta_star`]).
 //!
 //! # Units (docs/conventions.md §3)
 //! Marschner's S is defined through curve radiance L̄, radiance integrated across the fiber's
@@ -30,8 +32,8 @@
 //! fiber seen from ω_o projects to cos θ_o. The power intercepted per unit length from a beam
 //! of radiance L_i over dω_i is D L_i cos θ_i dω_i, which is exactly the factor in Marschner's
 //! L̄_o = D ∫ S L_i cos θ_i dω_i. So the fraction of intercepted power per steradian — this
-//! project's S — is Marschner's S times cos θ_o. (docs/conventions.md's "Marschner's S with cos θ_i kept
-//! outside" misses this cos θ_o.) Check on his smooth cylinder, S = δ(θ_o + θ_i) N / cos²θ:
+//! project's S — is Marschner's S times cos θ_o. (docs/conventions.md's "Marschner's S with cos θ_i
+//! kept outside" misses this cos θ_o.) Check on his smooth cylinder, S = δ(θ_o + θ_i) N / cos²θ:
 //! ∫ S cos θ_o dω_o = ∫∫ δ N cos²θ_o / cos²θ dθ_o dφ = ∫ N dφ, the albedo. ✓
 //!
 //! His rough model replaces δ(θ_o + θ_i) by M(θ_h), but M is unit-integral in θ_h and
@@ -72,7 +74,8 @@
 //! - `params.rs`: [`MarschnerParams`], Table 1's defaults and their range checks.
 //! - `longitudinal.rs`: the Gaussian lobes M_p in θ_h.
 //! - `deflection.rs`: the cubic deflection Φ̂ ([`CubicDeflection`]) and its roots ([`GammaRoots`]).
-//! - `azimuthal.rs`: attenuation A(p, h), N_p, the TRT caustic glints ([`Caustic`]) and [`eta_star`].
+//! - `azimuthal.rs`: attenuation A(p, h), N_p, the TRT caustic glints ([`Caustic`]) and
+//!   [`eta_star`].
 //! - `table.rs`: [`NpTable`], N_TT and N_TRT over (θ_d, φ) for [`Marschner2003::tabulated`].
 //! - `sampling.rs`: lobe choice, θ_o and φ sampling, and the [`crate::FiberModel`] implementation.
 //! - `tests.rs`: energy, root, reciprocity, χ² and finiteness tests.

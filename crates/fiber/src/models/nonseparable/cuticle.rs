@@ -163,7 +163,7 @@ impl Cuticle for TiltedCuticle {
     /// TT's is the rough surface's where it is set, at any tilt; TT's and TRT's are otherwise
     /// the tilt's ([`deflection_shift`]), 0 untilted. R's tilted form solves its exact mirror
     /// instead. TRRT keeps Bravais' Φ: its two internal reflections off the rough surface turn
-    /// it more than the tilt does (docs/validation.md, departure 15).
+    /// it more than the tilt does (docs/departures/15-shift-reference.md).
     fn deflection_shift(&self, p: usize, theta_i: f64, h: f64) -> f64 {
         if let (Some(table), 1) = (&self.rough_tt, p) {
             return table.at(theta_i, h).shift;

@@ -26,8 +26,8 @@ impl NonSeparable {
     /// The longitudinal lobe of mode p for light at θ_i leaving at azimuth φ.
     ///
     /// Widths, and the offset h that TT's cone depends on, are evaluated at the specular cone's
-    /// difference angle θ_d* = −θ_i rather than at the θ_d of the outgoing direction (d'Eon et al. 2014
-    /// writes θ_d): then M is a normalised density in θ_o for every φ and the model conserves
+    /// difference angle θ_d* = −θ_i rather than at the θ_d of the outgoing direction (d'Eon et al.
+    /// 2014 writes θ_d): then M is a normalised density in θ_o for every φ and the model conserves
     /// energy, where the per-direction θ_d loses up to 17 % at grazing incidence (albedo 0.83
     /// at β = 0.3, θ_i = 1.0; 0.87 at β = 0.04, θ_i = 1.4, measured with `furnace::albedo`).
     ///
@@ -180,10 +180,11 @@ impl NonSeparable {
 
     /// The tilted model's TT lobe at (θ_i, φ) without the lobe table, as the mean, variance
     /// and skewness of its exit sine over the light of every offset that reaches φ through the
-    /// rough surface ([`crate::models::nonseparable::rough::deflection::RoughTtTable::column_sine`]), at every
-    /// inclination: where the smooth path at h = 0 is blocked too, the light that leaves comes
-    /// from the slopes' tails, which the widened lattice reaches (departure 25; before it, the
-    /// lobe there was the one a rough exit cuts at the offset whose exit leaves at φ,
+    /// rough surface
+    /// ([`crate::models::nonseparable::rough::deflection::RoughTtTable::column_sine`]), at every
+    /// inclination: where the smooth path at h = 0 is blocked too, the light that leaves comes from
+    /// the slopes' tails, which the widened lattice reaches (departure 25; before it, the lobe
+    /// there was the one a rough exit cuts at the offset whose exit leaves at φ,
     /// [`tt_lobe_rough`]). The columns' mean and variance are set apart from the moments they
     /// give so that the sine lobe has those moments after its truncation to [−1, 1]
     /// ([`SkewedSineLobe::matched`]; departure 22). The tilted model always has the columns;

@@ -17,7 +17,8 @@
 //! cones, widths, R's mirrors, the tilt's shifts and the lobe-selection densities from
 //! `tables/`; the model without tables is the reference they are measured against. The model
 //! is not reciprocal, like d'Eon 2011. Where the tilted form departs from the paper, and
-//! why, is `docs/nonseparable.md`; the figures are in `docs/validation.md`.
+//! why, is `docs/nonseparable.md`; each departure, with its figure, is a file in
+//! `docs/departures/`.
 //!
 //! Erratum (both forms): d'Eon et al. 2014 §2.4 prints
 //! D_TT = (−2√(1−x²−y²) − η√(1 − (x²+y²)/η²)) / cos θ_d. The first-order derivatives it gives
@@ -159,10 +160,10 @@ impl NonSeparable {
     }
 
     /// The same model with its azimuthal terms tabulated (see [`DEon2011::tabulated`]), TT's
-    /// and TRT's lobes (`tables/sine_lobes.rs`) and, where A(p, h) is a trace through tilted or rough
-    /// scales (the tilted model, at any α), its lobe selection (`tables/selection.rs`): without it a
-    /// sample traces A(p, h) at its offset, and R's rough mirror at every node. The tilted
-    /// model also tabulates R's mirror (`tables/mirrors.rs`) where R's lobe is not the rough
+    /// and TRT's lobes (`tables/sine_lobes.rs`) and, where A(p, h) is a trace through tilted or
+    /// rough scales (the tilted model, at any α), its lobe selection (`tables/selection.rs`):
+    /// without it a sample traces A(p, h) at its offset, and R's rough mirror at every node. The
+    /// tilted model also tabulates R's mirror (`tables/mirrors.rs`) where R's lobe is not the rough
     /// mirror's (β < [`rough::mirror::LEAST_BETA`]), which it otherwise solves by Newton's
     /// method at every evaluation, and, with tilted scales, TT's and TRT's tilt shift
     /// for the sampler (`tables/shifts.rs`), which it otherwise traces at every draw.
@@ -514,8 +515,8 @@ impl FiberModel for NonSeparable {
     /// The density the sampling procedure is built to realise: Σ_p M_p N_p with A replaced by
     /// the lobe-selection probability. R, TRT, TRRT and the remainder realise it exactly (their
     /// M does not depend on φ, or their N not on θ_o); TT's M depends on φ while its N depends
-    /// on θ_d, so the iteration realises it only up to the residual of d'Eon et al. 2014 Appendix A,
-    /// −(∂P_M/∂φ)(∂P_N/∂θ). The gap is measured by `fixed_point_sampling_gap_and_iterations`
+    /// on θ_d, so the iteration realises it only up to the residual of d'Eon et al. 2014 Appendix
+    /// A, −(∂P_M/∂φ)(∂P_N/∂θ). The gap is measured by `fixed_point_sampling_gap_and_iterations`
     /// below. Offsets whose every path the tilted scales lose are never drawn, so there the
     /// density integrates to the share of offsets that send light somewhere, below 1.
     fn pdf(&self, wi: FiberAngles, wo: FiberAngles) -> f64 {

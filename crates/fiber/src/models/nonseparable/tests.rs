@@ -15,9 +15,7 @@ use std::f64::consts::PI;
 /// them since departure 28) change fastest with θ_i and the lobes are narrowest. The
 /// tilted TRT lobe, read from the rough quadrature's moments, linear in θ_i on both paths
 /// (departure 29), differs only by the lobe table's own interpolation: its cone within
-/// 4.1e-5 rad, its width within 1.3e-4 (before it, averaged over the offsets whose smooth
-/// path leaves and cut at h = 0, departures 16 and 17, with kinks in θ_i: 1.8e-3 and
-/// 2.3e-2).
+/// 4.1e-5 rad, its width within 1.3e-4.
 #[test]
 fn lobe_table_follows_the_exact_lobes() {
     for (scales, alpha_deg) in [
@@ -77,9 +75,9 @@ fn lobe_table_follows_the_exact_lobes() {
 /// d'Eon et al. 2014 §3: the fixed-point samples follow the model only up to Appendix A's residual.
 /// Measured total-variation distances between 2¹⁹ samples and the reported density, over
 /// θ_i × β × α (the tilted model: θ_i 1.1, α +2° loses 48 % to the scales, and its
-/// sampler refuses the offsets that lose everything): within 0.005 of the noise floor of the same number of exact draws (0.006 to
-/// 0.012 here), asserted within 0.01; the mean iteration count stays at most 3 (the paper
-/// reports about 2).
+/// sampler refuses the offsets that lose everything): within 0.005 of the noise floor of the same
+/// number of exact draws (0.006 to 0.012 here), asserted within 0.01; the mean iteration count
+/// stays at most 3 (the paper reports about 2).
 #[test]
 fn fixed_point_sampling_gap_and_iterations() {
     use crate::testing::sampling_gap;

@@ -6,7 +6,7 @@
 //! Why: near grazing incidence a lobe's energy can fall by an order of magnitude between two
 //! θ_i nodes (TT's through tilted scales at θ_i ≈ 1.1, where its exit passes the critical
 //! angle and only the slopes' tails let light out), nearly exponentially, and a linear blend
-//! of the two rows overshoots it (docs/validation.md, departure 26); the logarithm of the
+//! of the two rows overshoots it (docs/departures/26-tt-grazing-energy.md); the logarithm of the
 //! energy is nearly quadratic in θ_i there, which the cubic follows
 //! (`energy_follows_the_lobe_between_the_nodes`). The shape changes slowly, so blending it
 //! linearly is as good as it was.

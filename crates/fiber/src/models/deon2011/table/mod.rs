@@ -1,12 +1,12 @@
-//! The tabulated fast path for the azimuthal terms of d'Eon 2011 (d'Eon et al. 2014 eq. 4): N_p built
-//! once per parameter set over (θ_i, |θ_d|, |φ|), read back by trilinear interpolation, as
+//! The tabulated fast path for the azimuthal terms of d'Eon 2011 (d'Eon et al. 2014 eq. 4): N_p
+//! built once per parameter set over (θ_i, |θ_d|, |φ|), read back by trilinear interpolation, as
 //! production renderers do instead of integrating over h at every evaluation.
 //!
 //! The table holds TT, TRT and TRRT (RGB, plus the lobe-selection density importance sampling
 //! uses), and the p ≥ 4 remainder over θ_i alone; R has a closed form and needs no table.
 //! N_p is even in φ (A is even in h, Φ odd about pπ) and depends on θ_d only through
-//! η′, so φ is folded to [0, π] and θ_d is tabulated along 1/η′ ∈ [0, 1/η]. The φ spacing follows the
-//! narrowest azimuthal lobe (a third of its standard deviation, 64 to 1024 columns); below
+//! η′, so φ is folded to [0, π] and θ_d is tabulated along 1/η′ ∈ [0, 1/η]. The φ spacing follows
+//! the narrowest azimuthal lobe (a third of its standard deviation, 64 to 1024 columns); below
 //! β ≈ 0.02 the cap binds and the table blurs the narrowest lobes. Each row holds its lobes'
 //! shapes, normalised; their energies over θ_i come from a finer axis (`table/energy.rs`),
 //! since a lobe's energy can fall by an order of magnitude between two rows. Its error
@@ -181,8 +181,8 @@ impl AzimuthalTable {
         ]
     }
 
-    /// N_p(φ) for TT, TRT, TRRT and the remainder, the lobes the table holds: [`AzimuthalTable::eval_all`]
-    /// without R, for a caller that has R's offsets already.
+    /// N_p(φ) for TT, TRT, TRRT and the remainder, the lobes the table holds:
+    /// [`AzimuthalTable::eval_all`] without R, for a caller that has R's offsets already.
     pub fn eval_beyond_r(
         &self,
         theta_i: f64,

@@ -13,7 +13,8 @@ use std::cell::Cell;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 use std::sync::OnceLock;
 
-/// θ_cone of R (d'Eon et al. 2014 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α sin θ_i)).
+/// θ_cone of R (d'Eon et al. 2014 §2.3): −asin(sin θ_i − 2 sin α (cos(φ/2) cos α cos θ_i + sin α
+/// sin θ_i)).
 pub fn cone_r(theta_i: f64, alpha: f64, phi: f64) -> f64 {
     let (sa, ca) = alpha.sin_cos();
     let x =
@@ -114,8 +115,8 @@ pub fn first_order_tt(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> 
 /// variance in θ ([`variance_from_sine_spread`]) is [`variance_tt`] (d'Eon et al. 2014 §2.4,
 /// whose θ_o is −θ_i) to first order; a
 /// tilt moves the refractions' angles of incidence and the exit's, and with them the spread:
-/// narrower for α < 0, wider for α > 0, as the simulation's TT is (issue 14, departure 12 of
-/// docs/validation.md).
+/// narrower for α < 0, wider for α > 0, as the simulation's TT is
+/// (docs/departures/12-tt-width.md).
 pub fn first_order_tt_tilted(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> SineMoments {
     let incident = incident(theta_i, h);
     let (mean, variance) = sine_spread(alpha, beta, |tilts: [f64; 2]| {
@@ -165,7 +166,7 @@ pub fn first_order_trt_tilted(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> 
 /// Offsets per half fiber (midpoints in γ = asin h) over which [`trt_lobe_tilted`] averages.
 const TRT_OFFSETS: usize = 16;
 
-/// TRT's lobe through tilted scales over the offsets (docs/validation.md, departure 16): the
+/// TRT's lobe through tilted scales over the offsets (docs/departures/16-trt-width.md): the
 /// cone at h = 0, as
 /// d'Eon et al. 2014 §2.5 places it, and the spread of the exit's sine about it over the
 /// offsets, weighted by `attenuation(h)` (TRT's A(2, h)) dh: E[Var x(h) + (x(h) − x(0))²],
@@ -295,7 +296,7 @@ pub fn tt_lobe_rough(theta_i: f64, alpha: f64, eta: f64, beta: f64, h: f64) -> S
 /// The skewness of TT's exit sine at θ_i: [`axial_cut`]'s at h = 0, which the lobe at every
 /// offset takes, as it takes the cut's shift; 0 where no path leaves. To first order the exit
 /// sine is linear in the slopes and has none; the second order and the cut give it one
-/// (docs/validation.md, departure 19).
+/// (docs/departures/19-tt-sine-lobe.md).
 pub fn tt_skewness(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> f64 {
     axial_cut_last(theta_i, alpha, eta, beta).map_or(0.0, |cut| cut.skewness)
 }
@@ -371,7 +372,7 @@ pub fn axial_cut(theta_i: f64, alpha: f64, eta: f64, beta: f64) -> Option<Skewed
 const TRT_TILTS: usize = 16;
 
 /// TRT's lobe at h = 0 from the paths that leave, as [`axial_cut`] finds TT's
-/// (docs/validation.md, departure 17): each of its three scales tilted by α + σδ, σ = β/√2,
+/// (docs/departures/17-trt-cut.md): each of its three scales tilted by α + σδ, σ = β/√2,
 /// over [`TRT_TILTS`] equal-probability δ of the standard normal, each path weighted by the
 /// projected micro-normal and its Fresnel transmissions in and out and internal reflectance;
 /// the moments of the exit sine over the paths that leave. At grazing incidence the exit's
@@ -486,9 +487,9 @@ const FADE: f64 = 0.05;
 /// (standard deviation β/√2) at each of TRT's three events turns its exit azimuth by about
 /// 0.9, 0.8 and −0.6 times the slope at h = 0 (θ_i = 0.25), and by 1, 0 and −1 at the caustic
 /// that shapes the lobe at small θ_i, so its spread is about β there, not √2 β
-/// (`tests/tilted_tir.rs` measures it on an exact trace; departure 13 of docs/validation.md).
-/// Untilted; a tilt, other offsets and the caustics of steeper incidence add the axial slopes'
-/// share and more, which a constant leaves out.
+/// (`tests/tilted_tir.rs` measures it on an exact trace;
+/// docs/departures/13-trt-trrt-azimuthal-width.md). Untilted; a tilt, other offsets and the
+/// caustics of steeper incidence add the axial slopes' share and more, which a constant leaves out.
 pub fn trt_azimuthal_variance(beta: f64) -> f64 {
     beta * beta
 }
@@ -496,13 +497,14 @@ pub fn trt_azimuthal_variance(beta: f64) -> f64 {
 /// TRRT's azimuthal variance in the tilted model: 12 β², where d'Eon et al. 2014 keeps
 /// d'Eon et al. 2011's 2β². With two internal reflections, the slopes at TRRT's four events
 /// spread its exit azimuth by 3.3–3.7 β to first order (θ_i from 0.25 to 0.75, h ≤ 0.6, an
-/// exact trace in `tests/tilted_tir.rs`; departure 13 of docs/validation.md), so the model
-/// takes (2√3 β)², not (√2 β)².
+/// exact trace in `tests/tilted_tir.rs`; docs/departures/13-trt-trrt-azimuthal-width.md), so the
+/// model takes (2√3 β)², not (√2 β)².
 pub fn trrt_azimuthal_variance(beta: f64) -> f64 {
     12.0 * beta * beta
 }
 
-/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014 §2.5).
+/// v_TRT = ¼ β² D_TRT², D_TRT = (−2 cos θ_d + 4η √(1 − sin²θ_d/η²)) / cos θ_d (d'Eon et al. 2014
+/// §2.5).
 pub fn variance_trt(beta: f64, eta: f64, theta_d: f64) -> f64 {
     let (s, c) = theta_d.sin_cos();
     let d = (-2.0 * c + 4.0 * eta * (1.0 - s * s / (eta * eta)).max(0.0).sqrt()) / c.max(1e-6);

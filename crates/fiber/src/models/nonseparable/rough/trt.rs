@@ -2,14 +2,12 @@
 //! variance of x = sin θ_o over the light that the micro-normals of TRT's three events (the
 //! entry, the reflection inside, the exit) let out. The project's own extension of d'Eon et
 //! al. 2014 §2.5, which places TRT's lobe at the smooth path's cone at h = 0 with the paper's
-//! width (departure 29 in docs/validation.md).
+//! width (docs/departures/29-trt-pair-lobe.md).
 //!
 //! Why: where the scales tilt toward the tip, TRT's smooth path is blocked from some offset
-//! on (from below h = 0.2 at θ_i = 0.75, α = +4°), yet the rough surface lets light out
-//! there, toward the equator of the smooth exit and narrower; and approaching that edge the
-//! light that leaves moves toward the equator while the smooth path's exit moves toward the
-//! pole (docs/validation.md, "Where TRT's error lives", has the simulated offsets). TT's
-//! lobe had the same error until its pair quadrature ([`crate::models::nonseparable::rough::deflection`]).
+//! on, yet the rough surface lets light out there, toward the equator of the smooth exit and
+//! narrower (docs/departures/29-trt-pair-lobe.md has the simulated offsets), as TT's pair
+//! quadrature ([`crate::models::nonseparable::rough::deflection`]) found for TT.
 //!
 //! The quadrature: at each of [`OFFSETS`] offsets over the half fiber (TRT's exit is even in
 //! h), the entry's micro-normals refract the light into chords (`refraction_at`), each chord

@@ -1,7 +1,7 @@
 //! The attenuation A(p, h) of a smooth fiber whose cuticle scales tilt by α, traced through the
 //! full Nusselt rotation sequence of d'Eon et al. 2014 §2.2 with every event checked
-//! ([`crate::geometry::nusselt::AtScale`]): the project's own extension of the paper, which takes A from the
-//! untilted fiber (d'Eon et al. 2011) and so keeps energy a tilted fiber loses.
+//! ([`crate::geometry::nusselt::AtScale`]): the project's own extension of the paper, which takes A
+//! from the untilted fiber (d'Eon et al. 2011) and so keeps energy a tilted fiber loses.
 //!
 //! Tilted scales act as a shading normal (d'Eon et al. 2014 §2.1, as `cuticle-sim` models them):
 //! at each event the Fresnel factor is taken at the micro-normal, and power is lost where
@@ -364,10 +364,11 @@ mod tests {
 
     /// Where TT's exit is past the critical angle at grazing incidence, what escapes is what
     /// the entry's steep micro-normals send toward the exit: the chain's TT energy against
-    /// the (entry, exit) pairs of [`crate::models::nonseparable::rough::deflection`]'s finer lattice, an independent
-    /// quadrature, integrated over h: within 1 %, where only the slopes' tails let light out
-    /// (θ_i 1.1, α 4°, β 0.02) as elsewhere; product grids of equal-probability slopes (4² at
-    /// the entry, 48² at the exit) were 22 % and 1.7 % off (docs/validation.md, departure 26).
+    /// the (entry, exit) pairs of [`crate::models::nonseparable::rough::deflection`]'s finer
+    /// lattice, an independent quadrature, integrated over h: within 1 %, where only the slopes'
+    /// tails let light out (θ_i 1.1, α 4°, β 0.02) as elsewhere; product grids of equal-probability
+    /// slopes (4² at the entry, 48² at the exit) were 22 % and 1.7 % off
+    /// (docs/departures/26-tt-grazing-energy.md).
     #[test]
     fn tt_energy_follows_the_pair_quadrature_at_grazing_incidence() {
         use crate::models::nonseparable::rough::deflection::{Rule, rough_tt_exit};

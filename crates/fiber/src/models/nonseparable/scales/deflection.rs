@@ -5,12 +5,13 @@
 //! where every event meets the surface at the same in-plane angle. A tilted scale turns each
 //! direction about the fiber's tangent, which changes its component along the normal but not
 //! across it, so the in-plane angle atan(|y| / z) of each chord and of the exit changes, by
-//! up to half a radian of Φ near the edges (docs/validation.md, departure 9;
+//! up to half a radian of Φ near the edges (docs/departures/09-tt-exit-azimuth.md;
 //! `tests/tilted_tir.rs` checks this module against an exact 3D trace). The paper's model
 //! keeps Bravais' Φ; the tilted model shifts TRT's azimuthal lobe by [`deflection_shift`]
-//! (R has its exact mirror, [`crate::models::nonseparable::scales::mirror`]; TRRT measured worse shifted; TT takes
-//! its shift and spread through the rough surface, [`crate::models::nonseparable::rough::deflection`], which this
-//! smooth path is the β → 0 limit of) and places TT's cone at [`tilted_tt_offset`].
+//! (R has its exact mirror, [`crate::models::nonseparable::scales::mirror`]; TRRT measured worse
+//! shifted; TT takes its shift and spread through the rough surface,
+//! [`crate::models::nonseparable::rough::deflection`], which this smooth path is the β → 0 limit
+//! of) and places TT's cone at [`tilted_tt_offset`].
 //!
 //! With γ_i the in-plane angle of the incident direction to the normal at entry, γ′_k that of
 //! chord k (the same at both of its ends, by the circle's symmetry) and γ_o that of the exit
@@ -41,8 +42,8 @@ pub struct TiltedExit {
 }
 
 /// The exit of the path entering at offset h through scales tilted by α (the sign of
-/// [`crate::geometry::nusselt`]) after p internal chords; `None` where a smooth surface blocks the path
-/// ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally reflected).
+/// [`crate::geometry::nusselt`]) after p internal chords; `None` where a smooth surface blocks the
+/// path ([`nusselt::Blocked`]: the back of a scale, the wrong side, or an exit totally reflected).
 pub fn tilted_exit(p: u32, theta_i: f64, alpha: f64, eta: f64, h: f64) -> Option<TiltedExit> {
     let tilt = Tilt::new(alpha);
     let d = incident(theta_i, h);
@@ -134,7 +135,7 @@ pub enum ReadAt {
     OwnExit,
     /// The cone is the path at h = 0's (TRT's, d'Eon et al. 2014 §2.5). The smooth path's:
     /// near grazing incidence the tilted model moves TRT's cone by what its rough exit cuts
-    /// (up to 0.02 in sine at θ_i = 1.3; docs/validation.md, departure 17), which this
+    /// (up to 0.02 in sine at θ_i = 1.3; docs/departures/17-trt-cut.md), which this
     /// leaves out.
     CentralExit,
 }
@@ -143,7 +144,7 @@ pub enum ReadAt {
 /// sign, as Bravais' offset does): the root of [`tilted_deflection`]`(1, h) = |φ|` among the
 /// offsets whose smooth path leaves, the last of them where |φ| lies beyond their reach.
 /// `None` where the path at h = 0 is blocked. The tilted model places TT's cone here
-/// (docs/validation.md, departure 14), where the exit it describes leaves.
+/// (docs/departures/14-tt-cone-offset.md), where the exit it describes leaves.
 pub fn tilted_tt_offset(theta_i: f64, alpha: f64, eta: f64, phi: f64) -> Option<f64> {
     let deflection = |h: f64| tilted_deflection(1, theta_i, alpha, eta, h);
     let Reach {

@@ -318,7 +318,7 @@ impl Mirror {
     /// which is d'Eon et al. 2014 eq. 6. A tilt lets the in-plane slope move θ_o (the normal
     /// has an axial part sin α that ω_i·n scales), changes ω_i·n and cos θ_o, and tilts the
     /// curve. The simulation's R follows it where eq. 6 misses by a quarter
-    /// (`crates/validate/tests/tilted_r_width.rs`; docs/validation.md, departure 10).
+    /// (`crates/validate/tests/tilted_r_width.rs`; docs/departures/10-r-width-tilted.md).
     fn spread(&self, r: Reflected, slope: f64) -> f64 {
         let (sa, ca) = (self.sin_alpha, self.cos_alpha);
         let (sg, cg) = (r.sin_gamma, r.cos_gamma);
@@ -389,8 +389,8 @@ mod tests {
 
     /// Newton's solve against its reference twin, the bisection, over θ_i × α × φ (grazing
     /// incidence and both tilt signs, the azimuths past ±π included): the same offsets to 1e-12,
-    /// the same Jacobian and spread to the twin's central difference (1e-7 relative), the same reach;
-    /// except where the azimuth jumps (see [`Mirror::offset`]; at θ_i = ±1.5 with |α| ≥ 4°
+    /// the same Jacobian and spread to the twin's central difference (1e-7 relative), the same
+    /// reach; except where the azimuth jumps (see [`Mirror::offset`]; at θ_i = ±1.5 with |α| ≥ 4°
     /// the whole front half), which the bisection reports as a root of vanishing Jacobian
     /// and Newton's solve as none.
     #[test]

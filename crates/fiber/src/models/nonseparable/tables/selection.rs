@@ -3,15 +3,15 @@
 //! Importance sampling draws the offset h uniformly and then a lobe with probability
 //! proportional to the channel mean of A(p, h) (d'Eon et al. 2013); the pdf weighs R's
 //! offsets by the same probability. In the tilted model A(p, h) is a trace of every lobe's
-//! rotations and rough Fresnel factors ([`crate::models::nonseparable::scales::attenuation`]), at α = 0 too, the
-//! dearest part of a sample or a pdf. The probabilities are a proposal: any that `sample`
-//! draws with and `pdf` reports alike serve. So the fast path reads them from this table,
-//! bilinear in (θ_i, h) and normalised to sum 1, in both. Where the tilted scales lose everything at all four
-//! corners of a cell the table gives 0 and the sampler draws nothing, as the exact model does
-//! at such an offset. The azimuthal table's TT, TRT, TRRT and remainder densities are built
-//! from these probabilities too ([`crate::models::deon2011::table::AzimuthalTable::build_with_selection`]), so
-//! every lobe's density is the one the sampler realises, to the azimuthal table's own
-//! interpolation in φ.
+//! rotations and rough Fresnel factors ([`crate::models::nonseparable::scales::attenuation`]), at α
+//! = 0 too, the dearest part of a sample or a pdf. The probabilities are a proposal: any that
+//! `sample` draws with and `pdf` reports alike serve. So the fast path reads them from this table,
+//! bilinear in (θ_i, h) and normalised to sum 1, in both. Where the tilted scales lose everything
+//! at all four corners of a cell the table gives 0 and the sampler draws nothing, as the exact
+//! model does at such an offset. The azimuthal table's TT, TRT, TRRT and remainder densities are
+//! built from these probabilities too
+//! ([`crate::models::deon2011::table::AzimuthalTable::build_with_selection`]), so every lobe's
+//! density is the one the sampler realises, to the azimuthal table's own interpolation in φ.
 
 use crate::math::grid::{bilinear, fill_rows, locate};
 use crate::models::deon2011::azimuthal::AzimuthalScattering;

@@ -1,8 +1,8 @@
 //! What tilted scales add to TT's and TRT's deflection Φ(p, h)
-//! ([`crate::models::deon2011::azimuthal::AzimuthalScattering::deflection_shift`]), tabulated for the sampler:
-//! without it every TT or TRT draw traces its offset's path through the tilted scales (the
-//! rotation sequence of [`crate::models::nonseparable::scales::deflection::tilted_exit`]) to find where its φ is
-//! centred.
+//! ([`crate::models::deon2011::azimuthal::AzimuthalScattering::deflection_shift`]), tabulated for
+//! the sampler: without it every TT or TRT draw traces its offset's path through the tilted scales
+//! (the rotation sequence of [`crate::models::nonseparable::scales::deflection::tilted_exit`]) to
+//! find where its φ is centred.
 //!
 //! The shift depends on (θ_i, h) for a fiber's η and scale tilt, so the table runs over
 //! θ_i ∈ [−π/2, π/2] and h ∈ [−1, 1] and blends bilinearly. It is smooth where the path

@@ -3,23 +3,20 @@
 //! its events. The project's own extension of d'Eon et al. 2014, whose N_TT centres every
 //! offset's light on the smooth path's Φ(1, h) with one azimuthal variance β²/2 (§2.4).
 //!
-//! Why: near the offsets where the smooth path is blocked (the exit past the critical angle at
-//! a tilted scale) or grazes, the smooth Φ(1, h) bends sharply and then stops, where the light
-//! a rough surface lets through keeps moving smoothly with h; and the spread in φ grows from
-//! β/√2 near h = 0 to several times it at the edges. docs/validation.md, departure 20,
-//! has the comparison. Against the simulator: offset by offset in `cuticle-sim`'s
-//! `path::tests` (the paths traced at fixed h), and as N_TT over TT's edge columns in
+//! Why: near the offsets where the smooth path is blocked or grazes, the light a rough surface
+//! lets through keeps moving smoothly with h, and spreads wider in φ than β/√2
+//! (docs/departures/20-tt-rough-azimuth.md). Checked against the simulator in
 //! `crates/validate/tests/rough_tt_azimuth.rs`.
 //!
 //! The path: the entry's micro-normals refract the light into a spread of chords (a lattice
 //! of slopes, `lattice_slopes`, each with Walter et al. 2007's transmission weight, as
 //! [`crate::optics::rough_interface`] takes them); each chord meets the exit's scale
 //! ([`AtScale::inside`]), whose micro-normals refract it out on a finer lattice. Each exit's
-//! in-plane angles give its Φ = π + γ′ − γ_i + γ′ − γ_o, signed as [`crate::models::nonseparable::scales::deflection`]
-//! takes them, and the weighted mean and standard deviation over every (entry, exit) pair are
-//! the offset's. [`RoughTtTable`] holds them over (θ_i, γ = asin h) for one fiber, read
-//! bilinearly; the model's N_TT, its azimuthal table and its sampler all read that one table,
-//! so they agree with each other exactly.
+//! in-plane angles give its Φ = π + γ′ − γ_i + γ′ − γ_o, signed as
+//! [`crate::models::nonseparable::scales::deflection`] takes them, and the weighted mean and
+//! standard deviation over every (entry, exit) pair are the offset's. [`RoughTtTable`] holds them
+//! over (θ_i, γ = asin h) for one fiber, read bilinearly; the model's N_TT, its azimuthal table and
+//! its sampler all read that one table, so they agree with each other exactly.
 //!
 //! The same pairs give each exit's sine x = sin θ_o. TT's longitudinal lobe at a column φ is
 //! the mean, spread and skewness of x over the light that reaches φ from every offset

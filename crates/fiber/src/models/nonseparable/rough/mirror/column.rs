@@ -1,6 +1,6 @@
 //! R's light in one φ column, in micro-normal space: what the rough surface reflects into
 //! each direction ω_o, summed over the offsets, whose moments in sin θ_o give R's
-//! longitudinal lobe at that azimuth (docs/validation.md, departure 18).
+//! longitudinal lobe at that azimuth (docs/departures/18-r-column-lobe.md).
 //!
 //! For light at ω_i the micro-normal that reflects it into ω_o is the half vector
 //! m = (ω_i + ω_o)/|ω_i + ω_o|, the same for every offset; the offsets differ in how likely

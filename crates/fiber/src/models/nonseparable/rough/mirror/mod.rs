@@ -1,5 +1,5 @@
 //! R's azimuth off the rough surface: N_R spread by the micro-normals' slopes, and turned
-//! inward where an offset's incidence grazes (docs/validation.md, departure 11).
+//! inward where an offset's incidence grazes (docs/departures/11-r-rough-azimuth.md).
 //!
 //! d'Eon et al. 2011, and d'Eon et al. 2014 §2.3 after it, leave R without azimuthal roughness:
 //! N_R = ½ |dh/dφ| A(0, h) at the offset whose mirror leaves at φ. The simulated surface
@@ -25,8 +25,8 @@
 //!    reflected to φ by quadrature in micro-normal space ([`column`]): its energy, which is
 //!    N_R for S, and the mean and variance of sin θ_o, matched by the lobe that has them
 //!    ([`ConeLobe::from_sine_moments`]). Step 2's mixture alone is too wide in θ_o where the
-//!    offsets graze, and its Gaussians in φ misplace N_R there (docs/validation.md, departure
-//!    18).
+//!    offsets graze, and its Gaussians in φ misplace N_R there
+//!    (docs/departures/18-r-column-lobe.md).
 //! 4. [`RoughMirror::density`] reads N_R and [`RoughMirror::lobe`] R's lobe bilinear in
 //!    (θ_i, φ); [`RoughMirror::sample_phi`] draws φ_m(h) + μ + s z for the sampler's offset h,
 //!    so the sampled density is the one step 2's table holds up to its interpolation.
@@ -35,8 +35,9 @@
 //! integrate to it; `density_keeps_the_energy`): where the smooth mirror
 //! off a tilted scale leaves below the macro surface, the rough surface still sends part of
 //! the light out (the simulated R reaches past the smooth one there), which the smooth-mirror
-//! reflectance of [`crate::models::nonseparable::scales::attenuation`] counts as lost. The lobe selection keeps that
-//! reflectance: it is a proposal, which need not follow S exactly, only cover it.
+//! reflectance of [`crate::models::nonseparable::scales::attenuation`] counts as lost. The lobe
+//! selection keeps that reflectance: it is a proposal, which need not follow S exactly, only cover
+//! it.
 
 use crate::lobes::longitudinal::ConeLobe;
 pub use crate::lobes::sine_lobe::SineMoments;
