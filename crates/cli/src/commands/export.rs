@@ -32,10 +32,10 @@ pub fn run(args: Args) -> Result<()> {
         "pbrt" => Format::Pbrt,
         _ => Format::Mitsuba,
     };
-    let (mut spec, lights) = spec_from(&args.scene)?;
-    if lights.is_some() {
-        bail!("--lights FILE is for --method srbf and brute; export writes the environment map");
+    if args.scene.lights().is_some() {
+        bail!("--lights is for --method srbf and brute; export writes the environment map itself");
     }
+    let (mut spec, _) = spec_from(&args.scene)?;
     if let Some(method) = args.scene.method().filter(|m| *m != "path") {
         bail!("export writes the path tracer's scene; --method {method} does not apply");
     }

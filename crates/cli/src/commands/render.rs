@@ -96,6 +96,11 @@ impl SceneArgs {
     pub(crate) fn method(&self) -> Option<&str> {
         self.method.as_deref()
     }
+
+    /// The `--lights` given (a count or a file), if any.
+    pub(crate) fn lights(&self) -> Option<&str> {
+        self.lights.as_deref()
+    }
 }
 
 pub fn run(args: Args) -> Result<()> {
