@@ -149,7 +149,7 @@ fn check_look(scene: &Scene, look: &HairLook) -> Result<(), ExportError> {
     if !(f.eta > 1.0 && f.eta.is_finite()) {
         return bad(format!("eta {} must be finite and above 1", f.eta));
     }
-    if !(f.alpha_deg.abs() < 90.0) {
+    if f.alpha_deg.is_nan() || f.alpha_deg.abs() >= 90.0 {
         return bad(format!("alpha {} degrees is not a scale tilt", f.alpha_deg));
     }
     let values: &[DVec3] = match &look.sigma_a {
