@@ -183,3 +183,81 @@ pub(crate) fn num(x: f64) -> String {
 pub(crate) fn triple(v: DVec3, sep: &str) -> String {
     [v.x, v.y, v.z].map(num).join(sep)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cuticle_light::EnvMap;
+    use cuticle_render::SceneSpec;
+    use glam::Vec3;
+
+    fn scene() -> Scene {
+        let groom = cuticle_render::scene::load_groom("straight", 3).unwrap();
+        let env = EnvMap::new(4, 2, vec![Vec3::ONE; 8]);
+        Scene::from_parts(SceneSpec::default(), groom, env, Vec::new())
+    }
+
+    fn look() -> HairLook {
+        HairLook {
+            fiber: ChiangHair {
+                beta_m: 0.3,
+                beta_n: 0.3,
+                alpha_deg: 2.0,
+                eta: 1.55,
+            },
+            sigma_a: Absorption::Uniform(DVec3::new(0.2, 0.4, 0.8)),
+        }
+    }
+
+    const SETTINGS: RenderSettings = RenderSettings {
+        spp: 4,
+        seed: 0,
+        max_depth: 8,
+    };
+
+    /// A look a renderer would refuse or misread is refused before anything is written, naming
+    /// the value.
+    #[test]
+    fn impossible_looks_are_refused() {
+        type Spoil = (&'static str, fn(&mut HairLook));
+        let cases: [Spoil; 8] = [
+            ("beta_m", |l| l.fiber.beta_m = 0.0),
+            ("beta_n", |l| l.fiber.beta_n = 1.5),
+            ("beta_m", |l| l.fiber.beta_m = f64::NAN),
+            ("eta", |l| l.fiber.eta = 1.0),
+            ("alpha", |l| l.fiber.alpha_deg = f64::NAN),
+            ("sigma_a", |l| {
+                l.sigma_a = Absorption::Uniform(DVec3::splat(-1.0))
+            }),
+            ("sigma_a", |l| {
+                l.sigma_a = Absorption::Uniform(DVec3::new(0.0, f64::INFINITY, 0.0))
+            }),
+            ("2 absorptions for 3 strands", |l| {
+                l.sigma_a = Absorption::PerStrand(vec![DVec3::ONE; 2])
+            }),
+        ];
+        let scene = scene();
+        for (needle, spoil) in cases {
+            let mut bad = look();
+            spoil(&mut bad);
+            for format in [Format::Pbrt, Format::Mitsuba] {
+                let e = export(&scene, &bad, &SETTINGS, format)
+                    .unwrap_err()
+                    .to_string();
+                assert!(e.contains(needle), "{needle}: {e}");
+            }
+        }
+        assert!(export(&scene, &look(), &SETTINGS, Format::Mitsuba).is_ok());
+    }
+
+    /// Numbers are written so they read back to the same value, with no exponent and no "-0".
+    #[test]
+    fn numbers_round_trip() {
+        for x in [0.1, -2.5, 1e-9, 123456.789, 1.0 / 3.0] {
+            let s = num(x);
+            assert!(!s.contains('e'), "{s}");
+            assert_eq!(s.parse::<f64>().unwrap(), x);
+        }
+        assert_eq!(num(-0.0), "0");
+    }
+}
