@@ -1,5 +1,6 @@
-//! The scene for pbrt-v4 (`pbrt scene.pbrt` writes `image.exr`): `scene.pbrt` and the
-//! environment's equal-area image `env.exr`.
+//! The scene for pbrt-v4: `scene.pbrt` and the environment's equal-area image `env.exr`
+//! (`cd DIR && pbrt scene.pbrt` writes `image.exr`: pbrt resolves the light's image beside the
+//! scene file but writes the film's into the working folder).
 //!
 //! # The mapping (pbrt-v4's source: `src/pbrt/{cameras,shapes,materials,lights,samplers}.cpp`,
 //! `src/pbrt/bxdfs.h`; its file-format documentation, pbrt.org/fileformat-v4)
