@@ -37,6 +37,9 @@ enum Command {
     Env(commands::env::Args),
     /// Render a groom under environment light (Xu et al. 2011's SRBF renderer, or --method brute).
     Render(Box<commands::render::Args>),
+    /// The path tracer's scene for pbrt-v4 or Mitsuba 3 (Chiang et al. 2016 hair): the flags of
+    /// `render --method path`, written as those renderers load it.
+    Export(Box<commands::export::Args>),
     /// Two renders' output folders against each other over the hair: per-channel means, ratio,
     /// relative RMSE, for the whole hair and its bottom fifth (compare.json).
     Compare(commands::compare::Args),
@@ -62,6 +65,7 @@ fn main() {
         Command::Sweep(args) => commands::sweep::run(args),
         Command::Env(args) => commands::env::run(args),
         Command::Render(args) => commands::render::run(*args),
+        Command::Export(args) => commands::export::run(*args),
         Command::Validate(args) => commands::validate::run(args),
         Command::Compare(args) => commands::compare::run(args),
         Command::View(args) => commands::view::run(*args),

@@ -1,6 +1,7 @@
 pub mod compare;
 pub mod device;
 pub mod env;
+pub mod export;
 pub mod fiber_args;
 pub mod furnace;
 pub mod groom;

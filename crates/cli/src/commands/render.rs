@@ -91,6 +91,18 @@ pub struct SceneArgs {
     caustic_width_deg: Option<f64>,
 }
 
+impl SceneArgs {
+    /// The `--method` given, if any.
+    pub(crate) fn method(&self) -> Option<&str> {
+        self.method.as_deref()
+    }
+
+    /// The `--lights` given (a count or a file), if any.
+    pub(crate) fn lights(&self) -> Option<&str> {
+        self.lights.as_deref()
+    }
+}
+
 pub fn run(args: Args) -> Result<()> {
     let (spec, lights) = spec_from(&args.scene)?;
     if spec.method == Method::Path {

@@ -122,7 +122,7 @@ impl PathArgs {
         }
     }
 
-    fn options(&self) -> Result<TraceOptions> {
+    pub(crate) fn options(&self) -> Result<TraceOptions> {
         SPP.check(self.spp.into())?;
         MAX_DEPTH.check(self.max_depth.into())?;
         Ok(TraceOptions {
@@ -156,7 +156,7 @@ impl PathArgs {
     }
 
     /// The model's flags checked against the scene's hair before anything is loaded.
-    fn check(&self, spec: &SceneSpec) -> Result<()> {
+    pub(crate) fn check(&self, spec: &SceneSpec) -> Result<()> {
         let model = self.model.name();
         if let Some(flag) = self.unused_flag() {
             bail!(
@@ -188,6 +188,14 @@ impl PathArgs {
         }
     }
 
+    /// Chiang 2016's parameters as `--model chiang2016` renders them (β in the params is β_m),
+    /// and β_n: what `cuticle export` hands pbrt-v4 and Mitsuba 3.
+    pub(crate) fn chiang(&self, spec: &SceneSpec) -> Result<(FiberParams, f64)> {
+        let beta_m = BETA.named("beta_m").check(self.beta_m())?;
+        let beta_n = BETA.named("beta_n").check(self.beta_n())?;
+        Ok((self.fiber(spec, beta_m)?, beta_n))
+    }
+
     fn models(&self, scene: &Scene) -> Result<StrandModels> {
         let strands = scene.groom.strand_count();
         let one = |m: Box<dyn FiberModel>| Ok(StrandModels::uniform(m, strands));
@@ -210,7 +218,7 @@ impl PathArgs {
             .build(&self.fiber(&scene.spec, beta)?, &options)?)
     }
 
-    fn json(&self, scene: &Scene) -> Result<Value> {
+    pub(crate) fn json(&self, scene: &Scene) -> Result<Value> {
         let fiber = match self.model {
             ModelId::Marschner => Value::Null,
             ModelId::Chiang2016 => {
@@ -235,7 +243,7 @@ impl PathArgs {
 
 /// Loads the scene without an SRBF fit (the path tracer samples the map itself), once what
 /// it needs in memory is known to fit.
-fn load(mut spec: SceneSpec) -> Result<Scene> {
+pub(crate) fn load(mut spec: SceneSpec) -> Result<Scene> {
     spec.method = cuticle_render::Method::Path;
     crate::commands::render::load_within_memory(spec, None)
 }
