@@ -79,9 +79,9 @@ pub enum AbsorptionEdit {
     Colour([f32; 3]),
 }
 
-/// Azimuthal roughness β_n at which a target colour is inverted into μ_a (Chiang et al. 2016
-/// eq. 9 is stated for their model; Marschner's caustic width plays the part here).
-pub const COLOUR_BETA_N: f64 = 0.3;
+/// Azimuthal roughness β_n at which a target colour is inverted into μ_a: the fiber crate's,
+/// which USD grooms' colours use too.
+pub use cuticle_fiber::optics::absorption::COLOUR_BETA_N;
 
 impl AbsorptionEdit {
     /// The absorption this edit sets (`None` for the strands' own).

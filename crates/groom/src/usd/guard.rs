@@ -1,0 +1,226 @@
+//! What stands between a hostile file and the USD library: every layer the stage opens passes
+//! through [`GuardedResolver`], which refuses anything but a regular file of at most
+//! [`MAX_LAYER_BYTES`], and checks a `.usdc` layer's structure ([`check_crate`]) before the
+//! library reads it: the library allocates whatever counts a file declares, so a 1 KB file that
+//! claims 2³¹ points would exhaust memory. Whatever the library still panics on is caught
+//! ([`catch_quietly`]) and becomes one error line.
+
+use super::error::UsdError;
+use openusd::ar::{self, Asset, DefaultResolver, ResolvedPath, Resolver};
+use std::cell::Cell;
+use std::io::{self, Cursor};
+use std::sync::Once;
+
+/// Largest layer read: ample for a groom of millions of points in text.
+pub const MAX_LAYER_BYTES: u64 = 1 << 30;
+/// Largest count a `.usdc` structural section (tokens, fields, paths, specs) may declare.
+const MAX_STRUCTURE: u64 = 1 << 22;
+/// Largest number of elements a compressed `.usdc` array may declare: 2²⁸, the most points a
+/// `.hair` file holds.
+const MAX_COMPRESSED_ELEMENTS: u64 = 1 << 28;
+/// Most elements all arrays of one `.usdc` layer may declare together.
+const MAX_TOTAL_ELEMENTS: u64 = 1 << 29;
+
+/// The filesystem resolver, with every opened layer checked first.
+pub struct GuardedResolver(DefaultResolver);
+
+impl GuardedResolver {
+    pub fn new() -> Self {
+        Self(DefaultResolver::new())
+    }
+}
+
+impl Resolver for GuardedResolver {
+    fn create_identifier(&self, asset_path: &str, anchor: Option<&ResolvedPath>) -> String {
+        self.0.create_identifier(asset_path, anchor)
+    }
+
+    fn resolve(&self, asset_path: &str) -> Option<ResolvedPath> {
+        self.0.resolve(asset_path)
+    }
+
+    fn resolve_for_new_asset(&self, asset_path: &str) -> Option<ResolvedPath> {
+        self.0.resolve_for_new_asset(asset_path)
+    }
+
+    fn open_asset(&self, resolved_path: &ResolvedPath) -> io::Result<Box<dyn Asset>> {
+        let path = std::path::Path::new(resolved_path.as_os_str());
+        if !ar::is_package_relative_path(&resolved_path.to_string_lossy()) {
+            let len = crate::hair_file::read::regular_file_len(path)?;
+            if len > MAX_LAYER_BYTES {
+                return Err(io::Error::other(format!(
+                    "{} is {len} bytes, more than the {MAX_LAYER_BYTES} a groom's layer may be",
+                    path.display()
+                )));
+            }
+        }
+        let mut asset = self.0.open_asset(resolved_path)?;
+        let size = asset.size()?;
+        if size > MAX_LAYER_BYTES {
+            return Err(io::Error::other(format!(
+                "a layer of {size} bytes is more than the {MAX_LAYER_BYTES} a groom's layer may be"
+            )));
+        }
+        let bytes = asset.read_all()?;
+        if bytes.starts_with(openusd::usdc::MAGIC) {
+            check_crate(&bytes).map_err(|e| io::Error::other(format!("a broken .usdc: {e}")))?;
+        }
+        Ok(Box::new(Cursor::new(bytes)))
+    }
+
+    fn identity(&self) -> String {
+        "cuticle-guarded".into()
+    }
+}
+
+/// A `.usdc` file's structure checked against its size before the library reads it: the
+/// version, the table of contents, each section's counts, and then every array value's
+/// declared length (Pixar's crate format: an 88-byte bootstrap, a table of sections, and
+/// values addressed by 64-bit `ValueRep`s whose top bits say array / inlined / compressed).
+pub fn check_crate(bytes: &[u8]) -> Result<(), String> {
+    let len = bytes.len() as u64;
+    let version = (at(bytes, 8, 1)?, at(bytes, 9, 1)?, at(bytes, 10, 1)?);
+    if version < (0, 4, 0) || version > (0, 12, 0) {
+        return Err(format!(
+            "its version is {}.{}.{}; versions 0.4.0 to 0.12.0 are read",
+            version.0, version.1, version.2
+        ));
+    }
+    let toc = at(bytes, 16, 8)?;
+    let sections = at(bytes, toc, 8)?;
+    if sections == 0 || sections > 64 {
+        return Err(format!("its table of contents lists {sections} sections"));
+    }
+    for i in 0..sections {
+        let entry = toc + 8 + i * 32;
+        let (start, size) = (at(bytes, entry + 16, 8)?, at(bytes, entry + 24, 8)?);
+        if start.checked_add(size).is_none_or(|end| end > len) || size < 8 {
+            return Err(format!("section {i} lies outside the file"));
+        }
+        let name = &bytes[entry as usize..entry as usize + 16];
+        check_section_counts(bytes, name, start)?;
+    }
+    let file = catch_quietly(|| {
+        openusd::usdc::CrateFile::open(Cursor::new(bytes)).map_err(|e| format!("{e:#}"))
+    })
+    .map_err(|e| e.to_string())??;
+    file.validate().map_err(|e| format!("{e:#}"))?;
+    let count_bytes = if version >= (0, 7, 0) { 8 } else { 4 };
+    let mut total = 0u64;
+    for field in &file.fields {
+        let rep = field.value_rep.0;
+        let (array, inlined, compressed) = (rep >> 63 == 1, rep >> 62 & 1 == 1, rep >> 61 & 1 == 1);
+        if !array || inlined {
+            continue;
+        }
+        let offset = rep & ((1 << 48) - 1);
+        let count = at(bytes, offset, count_bytes)?;
+        let element = element_bytes(((rep >> 48) & 0xff) as u8);
+        let room = (len - offset - count_bytes) / element;
+        if (compressed && count > MAX_COMPRESSED_ELEMENTS) || (!compressed && count > room) {
+            return Err(format!(
+                "an array at byte {offset} declares {count} entries, more than the file holds"
+            ));
+        }
+        total = total.saturating_add(count);
+    }
+    if total > MAX_TOTAL_ELEMENTS {
+        return Err(format!(
+            "its arrays declare {total} entries together, more than {MAX_TOTAL_ELEMENTS}"
+        ));
+    }
+    Ok(())
+}
+
+/// The counts at the start of a structural section, each bounded.
+fn check_section_counts(bytes: &[u8], name: &[u8], start: u64) -> Result<(), String> {
+    let name = String::from_utf8_lossy(name.split(|b| *b == 0).next().unwrap_or_default());
+    // PATHS holds two counts (paths, then encoded paths); TOKENS its count then its size.
+    let counts = match name.as_ref() {
+        "PATHS" | "TOKENS" => 2,
+        "STRINGS" | "FIELDS" | "FIELDSETS" | "SPECS" => 1,
+        _ => 0,
+    };
+    for k in 0..counts {
+        let count = at(bytes, start + 8 * k, 8)?;
+        let limit = if name == "TOKENS" && k == 1 {
+            MAX_STRUCTURE * 64
+        } else {
+            MAX_STRUCTURE
+        };
+        if count > limit {
+            return Err(format!(
+                "its {name} section declares {count} entries, more than {limit}"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Bytes of one element of a crate value type (`Usd_CrateFile` type enum), at least 1: a
+/// lower bound, so that an array's declared length is compared with the room it needs.
+fn element_bytes(ty: u8) -> u64 {
+    match ty {
+        3 | 4 | 8 | 10 | 11 | 12 => 4, // int, uint, float, string, token, asset path
+        5 | 6 | 9 => 8,                // int64, uint64, double
+        7 => 2,                        // half
+        13 => 32,                      // matrix2d
+        14 => 72,                      // matrix3d
+        15 => 128,                     // matrix4d
+        16 => 32,                      // quatd
+        17 => 16,                      // quatf
+        18 => 8,                       // quath
+        19 => 16,                      // vec2d
+        20 | 22 => 8,                  // vec2f, vec2i
+        21 => 4,                       // vec2h
+        23 => 24,                      // vec3d
+        24 | 26 => 12,                 // vec3f, vec3i
+        25 => 6,                       // vec3h
+        27 => 32,                      // vec4d
+        28 | 30 => 16,                 // vec4f, vec4i
+        29 => 8,                       // vec4h
+        _ => 1,
+    }
+}
+
+/// The little-endian unsigned integer of `n` bytes at `offset`.
+fn at(bytes: &[u8], offset: u64, n: u64) -> Result<u64, String> {
+    let range = usize::try_from(offset)
+        .ok()
+        .and_then(|o| Some(o..o.checked_add(n as usize)?))
+        .filter(|r| r.end <= bytes.len())
+        .ok_or_else(|| format!("it ends before byte {}", offset.saturating_add(n)))?;
+    Ok(bytes[range]
+        .iter()
+        .rev()
+        .fold(0u64, |v, b| (v << 8) | u64::from(*b)))
+}
+
+thread_local! {
+    static QUIET: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Runs `f`, turning a panic into [`UsdError::Panicked`] without printing it: the panic hook
+/// stays silent for this thread while `f` runs and forwards every other panic as before.
+pub fn catch_quietly<T>(f: impl FnOnce() -> T) -> Result<T, UsdError> {
+    static HOOK: Once = Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    let was = QUIET.with(|q| q.replace(true));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    QUIET.with(|q| q.set(was));
+    result.map_err(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic".into());
+        UsdError::Panicked(message.lines().next().unwrap_or_default().to_string())
+    })
+}
