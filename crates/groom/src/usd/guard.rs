@@ -98,31 +98,16 @@ pub fn check_crate(bytes: &[u8]) -> Result<(), String> {
             return Err(format!("section {i} lies outside the file"));
         }
         let name = &bytes[entry as usize..entry as usize + 16];
-        check_section_counts(bytes, name, start)?;
+        check_section_counts(bytes, name, start, size)?;
     }
     let file = catch_quietly(|| {
         openusd::usdc::CrateFile::open(Cursor::new(bytes)).map_err(|e| format!("{e:#}"))
     })
     .map_err(|e| e.to_string())??;
     file.validate().map_err(|e| format!("{e:#}"))?;
-    let count_bytes = if version >= (0, 7, 0) { 8 } else { 4 };
     let mut total = 0u64;
     for field in &file.fields {
-        let rep = field.value_rep.0;
-        let (array, inlined, compressed) = (rep >> 63 == 1, rep >> 62 & 1 == 1, rep >> 61 & 1 == 1);
-        if !array || inlined {
-            continue;
-        }
-        let offset = rep & ((1 << 48) - 1);
-        let count = at(bytes, offset, count_bytes)?;
-        let element = element_bytes(((rep >> 48) & 0xff) as u8);
-        let room = (len - offset - count_bytes) / element;
-        if (compressed && count > MAX_COMPRESSED_ELEMENTS) || (!compressed && count > room) {
-            return Err(format!(
-                "an array at byte {offset} declares {count} entries, more than the file holds"
-            ));
-        }
-        total = total.saturating_add(count);
+        total = total.saturating_add(check_value(bytes, field.value_rep.0, version)?);
     }
     if total > MAX_TOTAL_ELEMENTS {
         return Err(format!(
@@ -132,26 +117,110 @@ pub fn check_crate(bytes: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// The counts at the start of a structural section, each bounded.
-fn check_section_counts(bytes: &[u8], name: &[u8], start: u64) -> Result<(), String> {
-    let name = String::from_utf8_lossy(name.split(|b| *b == 0).next().unwrap_or_default());
-    // PATHS holds two counts (paths, then encoded paths); TOKENS its count then its size.
-    let counts = match name.as_ref() {
-        "PATHS" | "TOKENS" => 2,
-        "STRINGS" | "FIELDS" | "FIELDSETS" | "SPECS" => 1,
-        _ => 0,
+/// One value's declared lengths against the bytes after it; returns the elements it declares.
+/// Arrays, the vector types (tokens, paths, strings, doubles, layer offsets), list ops and
+/// dictionaries are checked; time samples and nested values are left to the library.
+fn check_value(bytes: &[u8], rep: u64, version: (u64, u64, u64)) -> Result<u64, String> {
+    // Before 0.5.0 an array starts with a u32 shape; before 0.7.0 its count is a u32.
+    let shape = if version < (0, 5, 0) { 4 } else { 0 };
+    let count_bytes = if version >= (0, 7, 0) { 8 } else { 4 };
+    let (array, inlined, compressed) = (rep >> 63 == 1, rep >> 62 & 1 == 1, rep >> 61 & 1 == 1);
+    if inlined {
+        return Ok(0);
+    }
+    let offset = rep & ((1 << 48) - 1);
+    let ty = ((rep >> 48) & 0xff) as u8;
+    if array {
+        let count = at(bytes, offset + shape, count_bytes)?;
+        let room = room(bytes, offset + shape + count_bytes, element_bytes(ty));
+        if (compressed && count > MAX_COMPRESSED_ELEMENTS) || (!compressed && count > room) {
+            return Err(declares(offset, count));
+        }
+        return Ok(count);
+    }
+    let item = match ty {
+        40 | 41 | 50 => 4, // path, token, string vectors: u32 indices
+        48 | 31 | 45 => 8, // doubles; dictionary, variant map entries
+        49 => 16,          // layer offsets
+        32..=39 | 55 => return check_list_op(bytes, offset, ty),
+        _ => return Ok(0),
     };
+    let count = at(bytes, offset, 8)?;
+    if count > room(bytes, offset + 8, item) {
+        return Err(declares(offset, count));
+    }
+    Ok(count)
+}
+
+/// A list op: a header byte, then each present list as a count and its items (token, string,
+/// path, int and uint lists: 4 bytes an item; 64-bit ones: 8; references and payloads: at
+/// least 8, and only their first list is checked, as their items vary in size).
+fn check_list_op(bytes: &[u8], offset: u64, ty: u8) -> Result<u64, String> {
+    let header = at(bytes, offset, 1)?;
+    let (item, sized) = match ty {
+        37 | 39 => (8, true),
+        35 | 55 => (8, false),
+        _ => (4, true),
+    };
+    let mut at_byte = offset + 1;
+    let mut total = 0u64;
+    // openusd's order: explicit, added, prepended, appended, deleted, ordered.
+    for bit in [1, 2, 5, 6, 3, 4] {
+        if header & (1 << bit) == 0 {
+            continue;
+        }
+        let count = at(bytes, at_byte, 8)?;
+        if count > room(bytes, at_byte + 8, item) {
+            return Err(declares(at_byte, count));
+        }
+        total += count;
+        if !sized {
+            break;
+        }
+        at_byte += 8 + count * item;
+    }
+    Ok(total)
+}
+
+/// Elements of `size` bytes that fit between `from` and the end of the file.
+fn room(bytes: &[u8], from: u64, size: u64) -> u64 {
+    (bytes.len() as u64).saturating_sub(from) / size
+}
+
+fn declares(offset: u64, count: u64) -> String {
+    format!("a value at byte {offset} declares {count} entries, more than the file holds")
+}
+
+/// A structural section's counts, each bounded, and its compressed blocks (each a u64 size
+/// and that many bytes), each inside the section: TOKENS is a count, its text's size and one
+/// block; FIELDS a count and two blocks; FIELDSETS a count and one; PATHS two counts and three;
+/// SPECS a count and three.
+fn check_section_counts(bytes: &[u8], name: &[u8], start: u64, size: u64) -> Result<(), String> {
+    let name = String::from_utf8_lossy(name.split(|b| *b == 0).next().unwrap_or_default());
+    let (counts, blocks) = match name.as_ref() {
+        "TOKENS" => (2, 1),
+        "FIELDS" => (1, 2),
+        "FIELDSETS" => (1, 1),
+        "PATHS" => (2, 3),
+        "SPECS" => (1, 3),
+        "STRINGS" => (1, 0),
+        _ => (0, 0),
+    };
+    let end = start + size;
     for k in 0..counts {
         let count = at(bytes, start + 8 * k, 8)?;
-        let limit = if name == "TOKENS" && k == 1 {
-            MAX_STRUCTURE * 64
-        } else {
-            MAX_STRUCTURE
-        };
-        if count > limit {
+        if count > MAX_STRUCTURE {
             return Err(format!(
-                "its {name} section declares {count} entries, more than {limit}"
+                "its {name} section declares {count} entries, more than {MAX_STRUCTURE}"
             ));
+        }
+    }
+    let mut block = start + 8 * counts;
+    for _ in 0..blocks {
+        let len = at(bytes, block, 8)?;
+        match block.checked_add(8).and_then(|b| b.checked_add(len)) {
+            Some(next) if next <= end => block = next,
+            _ => return Err(format!("its {name} section's data runs past its end")),
         }
     }
     Ok(())

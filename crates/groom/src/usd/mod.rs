@@ -53,6 +53,17 @@ struct PrimPlan {
 /// Reads every `BasisCurves` prim of the stage at `path` into one groom.
 pub fn read(path: impl AsRef<Path>) -> Result<Groom, UsdError> {
     let path = path.as_ref();
+    // The library reads values lazily, so any step may meet a broken one.
+    guard::catch_quietly(|| read_stage(path))?
+}
+
+fn read_stage(path: &Path) -> Result<Groom, UsdError> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    if !EXTENSIONS.contains(&ext) {
+        return Err(UsdError::Open(format!(
+            "a USD stage is read by its extension, and {ext:?} is none of {EXTENSIONS:?}"
+        )));
+    }
     crate::hair_file::read::regular_file_len(path)?;
     let stage = stage::open(path)?;
     let frame = StageFrame::of(&stage)?;
@@ -63,7 +74,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Groom, UsdError> {
     let mut plans = Vec::with_capacity(prims.len());
     let mut total = 0u64;
     for prim in prims {
-        let plan = guard::catch_quietly(|| plan(prim))??;
+        let plan = plan(prim)?;
         total += plan.layout.out_points;
         if total > u64::from(MAX_POINTS) {
             return Err(UsdError::TooManyPoints {
