@@ -278,3 +278,24 @@ fn a_y_up_centimetre_groom_and_a_z_up_metre_groom_arrive_alike_and_upright() {
         assert!(b.max.z - b.min.z > 9.0 && b.max.y - b.min.y < 2.0);
     }
 }
+
+/// An indexed primvar (`NAME:indices`) gives each curve the value its index picks.
+#[test]
+fn indexed_primvars_are_expanded() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("indexed.usda");
+    std::fs::write(
+        &path,
+        "#usda 1.0\n(\n    upAxis = \"Z\"\n)\ndef BasisCurves \"H\"\n{\n    uniform token type = \"linear\"\n    int[] curveVertexCounts = [2, 2, 2]\n    point3f[] points = [(0,0,0), (0,0,1), (1,0,0), (1,0,1), (2,0,0), (2,0,1)]\n    color3f[] primvars:displayColor = [(0.5, 0.5, 0.5), (0.25, 0.25, 0.25)] (\n        interpolation = \"uniform\"\n    )\n    int[] primvars:displayColor:indices = [1, 0, 1]\n}\n",
+    )
+    .unwrap();
+    let a = absorption(&Groom::read(&path).unwrap());
+    let (dark, light) = (mu_a_of_colour([0.25; 3]), mu_a_of_colour([0.5; 3]));
+    assert_eq!(a, [dark, light, dark]);
+    let bad = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("[1, 0, 1]", "[1, 0, 2]");
+    std::fs::write(&path, bad).unwrap();
+    let e = Groom::read(&path).unwrap_err().to_string();
+    assert!(e.contains("index 2, outside its 2 values"), "{e}");
+}

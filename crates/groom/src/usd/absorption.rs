@@ -7,7 +7,8 @@
 //! 2. `eumelanin` and/or `pheomelanin`: concentrations as cuticle's melanin model takes them;
 //! 3. `melanin` (and `melanin_redness`, default 0), Blender's principled-hair amounts in
 //!    [0, 1], turned into concentrations as Cycles does: c = −ln(max(1 − melanin, 10⁻⁴)),
-//!    eumelanin = c·(1 − redness), pheomelanin = c·redness;
+//!    eumelanin = c·(1 − redness), pheomelanin = c·redness (the concentrations then go through
+//!    cuticle's melanin model, d'Eon et al. 2011's absorption, not Cycles' own constants);
 //! 4. `sigma_a`: μ_a per unit radius, RGB;
 //! 5. `displayColor`, then `color`: a colour, turned into μ_a by
 //!    [`cuticle_fiber::optics::absorption::mu_a_from_color`] at

@@ -92,6 +92,13 @@ pub enum PrimFault {
         actual: usize,
     },
 
+    #[error("{attribute} holds index {index}, outside its {values} values")]
+    Index {
+        attribute: String,
+        index: i64,
+        values: usize,
+    },
+
     #[error("{attribute} value {index} is {value}, not a finite number")]
     NonFinite {
         attribute: String,

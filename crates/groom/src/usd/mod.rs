@@ -17,7 +17,8 @@
 //! 6. each strand's absorption comes from its primvars ([`absorption`]).
 //!
 //! Writing ([`write`]): one `BasisCurves` prim, linear, Z-up, centimetres, vertex widths, and
-//! each strand's absorption as uniform primvars.
+//! each strand's absorption as uniform primvars, as `.usda` text (`.usdc` is refused: see
+//! [`write`]).
 
 pub mod absorption;
 pub mod basis;

@@ -106,7 +106,7 @@ pub fn scalars(name: &str, value: Value) -> Result<Vec<f64>, PrimFault> {
         Value::Half(h) => vec![h.to_f64()],
         other => return Err(wrong(name, &other, "numbers")),
     };
-    check_finite(name, v.iter().copied())?;
+    check_finite(name, v.iter().copied(), 1)?;
     Ok(v)
 }
 
@@ -124,17 +124,22 @@ pub fn vec3s(name: &str, value: Value) -> Result<Vec<DVec3>, PrimFault> {
         Value::Vec3d(p) => vec![DVec3::new(p.x, p.y, p.z)],
         other => return Err(wrong(name, &other, "3-vectors")),
     };
-    check_finite(name, v.iter().flat_map(|p| p.to_array()))?;
+    check_finite(name, v.iter().flat_map(|p| p.to_array()), 3)?;
     Ok(v)
 }
 
-fn check_finite(name: &str, values: impl Iterator<Item = f64>) -> Result<(), PrimFault> {
-    let mut values = values;
-    match values.position(|x| !x.is_finite()) {
-        Some(i) => Err(PrimFault::NonFinite {
+/// Every value finite; the first that is not is named by its entry (`width` numbers each).
+fn check_finite(
+    name: &str,
+    values: impl Iterator<Item = f64>,
+    width: usize,
+) -> Result<(), PrimFault> {
+    let mut values = values.enumerate();
+    match values.find(|(_, x)| !x.is_finite()) {
+        Some((i, value)) => Err(PrimFault::NonFinite {
             attribute: name.into(),
-            index: i,
-            value: f64::NAN,
+            index: i / width,
+            value,
         }),
         None => Ok(()),
     }
@@ -183,11 +188,10 @@ fn apply_indices<T: Copy>(name: &str, values: &[T], indices: &[i64]) -> Result<V
             usize::try_from(i)
                 .ok()
                 .and_then(|i| values.get(i).copied())
-                .ok_or(PrimFault::Length {
+                .ok_or(PrimFault::Index {
                     attribute: format!("{name}:indices"),
-                    interpolation: format!("index {i} into {} values:", values.len()),
-                    expected: values.len(),
-                    actual: indices.len(),
+                    index: i,
+                    values: values.len(),
                 })
         })
         .collect()

@@ -10,6 +10,11 @@
 //!   1 `sigma_a`, 2 melanin), so that cuticle reads back exactly what it wrote.
 //!
 //! Numbers are f32 as in the groom, so a written groom reads back bit for bit.
+//!
+//! Only text (`.usda`) is written: openusd 0.6's binary writer makes `.usdc` files that Pixar's
+//! own library refuses ("Invalid children found in primChildren field": its prims' children do
+//! not decode), so a `.usdc` request is refused rather than answered with a file Houdini or
+//! Blender cannot open. `.usdc` files are read.
 
 use super::absorption::{
     EUMELANIN, MELANIN, MELANIN_REDNESS, PHEOMELANIN, SIGMA_A, SOURCE, SOURCE_MELANIN, SOURCE_NONE,
@@ -23,14 +28,18 @@ use openusd::gf;
 use openusd::sdf::{self, ChildrenKey, FieldKey, SpecType, Specifier, Value, Variability};
 use std::path::Path;
 
-/// The two USD encodings this writer makes.
+/// The two USD encodings a groom may be asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum UsdFormat {
-    /// Text.
+    /// Text: written.
     Usda,
-    /// Binary ("crate").
+    /// Binary ("crate"): refused (see the module doc).
     Usdc,
 }
+
+/// Why `.usdc` is not written, in one line.
+pub const NO_USDC: &str = "cuticle writes USD as text (.usda): the .usdc files openusd 0.6 \
+    writes are refused by Pixar's USD (their prims' children do not decode); name a .usda file";
 
 impl UsdFormat {
     /// The format a path's extension names (`.usda`, `.usdc`), if either.
@@ -47,13 +56,13 @@ const PRIM: &str = "/Groom/Hair";
 
 /// The bytes of a USD layer holding `groom`.
 pub fn to_usd_bytes(groom: &Groom, format: UsdFormat) -> Result<Vec<u8>, UsdError> {
+    if format == UsdFormat::Usdc {
+        return Err(UsdError::Write(NO_USDC.into()));
+    }
     let data = layer(groom)?;
     let mut out = std::io::Cursor::new(Vec::new());
-    let written = match format {
-        UsdFormat::Usda => openusd::usda::TextWriter::write(&data, &mut out),
-        UsdFormat::Usdc => openusd::usdc::CrateWriter::write(&data, &mut out),
-    };
-    written.map_err(|e| UsdError::Write(super::stage::one_line(&e)))?;
+    openusd::usda::TextWriter::write(&data, &mut out)
+        .map_err(|e| UsdError::Write(super::stage::one_line(&e)))?;
     Ok(out.into_inner())
 }
 

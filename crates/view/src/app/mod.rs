@@ -355,7 +355,7 @@ impl ViewApp {
         self.paint_serial += 1;
     }
 
-    /// Starts loading a groom (preset or `.hair`).
+    /// Starts loading a groom (preset, `.hair` or USD).
     pub fn load_groom(&mut self) {
         let name = self.controls.groom_text.trim().to_string();
         self.groom_job = Some(jobs::load_groom(

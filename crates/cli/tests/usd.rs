@@ -1,0 +1,146 @@
+//! USD grooms through the command line (issue 54): read everywhere a groom is taken, written by
+//! `groom make --out FILE.usda|.usdc`, and hostile stages refused in one line.
+
+mod common;
+
+use common::{B, assert_refused, assert_runs};
+use std::path::{Path, PathBuf};
+
+fn fixture(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../groom/tests/data/usd")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn make(out: &Path, strands: &str) -> String {
+    assert_runs(&[
+        "groom",
+        "make",
+        "--preset",
+        "wavy",
+        "--strands",
+        strands,
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
+#[test]
+fn groom_make_writes_usd_that_groom_info_and_render_read() {
+    let tmp = tempfile::tempdir().unwrap();
+    let hair_dir = tmp.path().join("hair");
+    make(&hair_dir, "30");
+    let hair_info = assert_runs(&[
+        "groom",
+        "info",
+        hair_dir.join("groom.hair").to_str().unwrap(),
+    ]);
+    for ext in ["usda"] {
+        let out: PathBuf = tmp.path().join(format!("groom.{ext}"));
+        let shown = make(&out, "30");
+        assert!(shown.contains("USD BasisCurves"), "{shown}");
+        let info = assert_runs(&["groom", "info", out.to_str().unwrap()]);
+        // the same strands, points, bounds and lengths as the .hair of the same groom.
+        let tail = |s: &str| {
+            s.lines()
+                .skip(1)
+                .filter(|l| !l.starts_with("info:"))
+                .map(str::to_string)
+                .collect::<Vec<_>>()
+        };
+        assert!(info.contains("30 strands"), "{info}");
+        assert_eq!(
+            tail(&info)[2..],
+            tail(&hair_info)[2..],
+            "{info}\n{hair_info}"
+        );
+        let render_out = tmp.path().join(format!("render-{ext}"));
+        let mut args = vec![
+            "render",
+            "--device",
+            "cpu",
+            "--groom",
+            out.to_str().unwrap(),
+        ];
+        args.extend(B);
+        args.extend(["--out", render_out.to_str().unwrap()]);
+        assert_runs(&args);
+        assert!(render_out.join("image.png").exists());
+    }
+    assert_refused(
+        &[
+            "groom",
+            "make",
+            "--out",
+            tmp.path().join("g.usdz").to_str().unwrap(),
+        ],
+        ".usdz is not written",
+    );
+}
+
+#[test]
+fn fixtures_from_pixars_library_render_with_either_method() {
+    let tmp = tempfile::tempdir().unwrap();
+    for name in ["upright_y_cm.usda", "transforms.usdc", "primvars.usda"] {
+        let groom = fixture(name);
+        let out = tmp.path().join(name).display().to_string();
+        let mut srbf = vec!["render", "--device", "cpu", "--groom", &groom];
+        srbf.extend(B);
+        srbf.extend(["--out", &out]);
+        assert_runs(&srbf);
+        let path_out = format!("{out}-path");
+        assert_runs(&[
+            "render", "--method", "path", "--spp", "2", "--width", "32", "--height", "24",
+            "--groom", &groom, "--out", &path_out,
+        ]);
+    }
+}
+
+#[test]
+fn hostile_usd_is_refused_in_one_line_by_every_reader() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let mut huge = std::fs::read(fixture("upright_z_m.usdc")).unwrap();
+    let mut pattern = 4u64.to_le_bytes().to_vec();
+    for v in [0.0f32, 0.0, 0.1] {
+        pattern.extend(v.to_le_bytes());
+    }
+    let at = huge
+        .windows(pattern.len())
+        .position(|w| w == pattern)
+        .unwrap();
+    huge[at..at + 8].copy_from_slice(&(1u64 << 31).to_le_bytes());
+    let huge_path = dir.join("huge.usdc");
+    std::fs::write(&huge_path, &huge).unwrap();
+    let whole = std::fs::read(fixture("transforms.usdc")).unwrap();
+    let cut = dir.join("cut.usdc");
+    std::fs::write(&cut, &whole[..whole.len() / 2]).unwrap();
+    let nan = dir.join("nan.usda");
+    std::fs::write(
+        &nan,
+        "#usda 1.0\ndef BasisCurves \"H\"\n{\n    uniform token type = \"linear\"\n    int[] curveVertexCounts = [2]\n    point3f[] points = [(0, 0, 0), (nan, 0, 1)]\n}\n",
+    )
+    .unwrap();
+    let out = dir.join("out").display().to_string();
+    for (path, needle) in [
+        (huge_path, "declares 2147483648"),
+        (cut, "not a readable USD file"),
+        (nan, "not a finite number"),
+    ] {
+        let groom = path.to_str().unwrap();
+        assert_refused(&["groom", "info", groom], needle);
+        let mut render = vec!["render", "--groom", groom];
+        render.extend(B);
+        render.extend(["--out", &out]);
+        assert_refused(&render, needle);
+        assert_refused(
+            &[
+                "render", "--method", "path", "--spp", "1", "--groom", groom, "--out", &out,
+            ],
+            needle,
+        );
+    }
+    assert!(!dir.join("out").exists());
+}
