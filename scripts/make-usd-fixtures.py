@@ -13,15 +13,16 @@ and know every number written here, so a change here needs the same change there
 - primvars.usda   per-strand appearance: melanin + melanin_redness (Blender's names),
                   eumelanin + pheomelanin, displayColor, color; uniform, constant and vertex.
 - transforms.usdc binary, Y-up, metres: two prims under different transforms.
-- upright_y_cm.usda / upright_z_m.usdc
+- upright_y_cm.usda / upright_z_m.usdc / upright_z_m.usdz
                   the same two strands growing "up" from a scalp, Y-up in centimetres and
-                  Z-up in metres: both must arrive identical, +z up, in centimetres.
+                  Z-up in metres (also packaged as .usdz): all must arrive identical, +z up,
+                  in centimetres.
 """
 
 import os
 import sys
 
-from pxr import Gf, Sdf, Usd, UsdGeom, Vt
+from pxr import Gf, Sdf, Usd, UsdGeom, UsdUtils, Vt
 
 OUT = os.path.join(os.path.dirname(__file__), "..", "crates", "groom", "tests", "data", "usd")
 
@@ -135,6 +136,11 @@ def upright():
     metres = [(x / 100, y / 100, z / 100) for (x, y, z) in zup_cm]
     curves(s, "/Groom/Hair", "linear", None, "nonperiodic", [2, 2], metres, [0.00007], "constant")
     s.GetRootLayer().Save()
+    # the same as a .usdz package.
+    usdz = os.path.join(OUT, "upright_z_m.usdz")
+    if os.path.exists(usdz):
+        os.remove(usdz)
+    assert UsdUtils.CreateNewUsdzPackage(os.path.join(OUT, "upright_z_m.usdc"), usdz)
 
 
 def main():

@@ -85,11 +85,9 @@ fn a_curve_with_fewer_points_than_its_basis_needs() {
         );
     }
     // a Bézier of 5 points is no whole number of segments.
-    let body = format!(
-        "uniform token type = \"cubic\"\nint[] curveVertexCounts = [5]\npoint3f[] points = [(0,0,0), (0,0,1), (0,0,2), (0,0,3), (0,0,4)]"
-    );
+    let body = "uniform token type = \"cubic\"\nint[] curveVertexCounts = [5]\npoint3f[] points = [(0,0,0), (0,0,1), (0,0,2), (0,0,3), (0,0,4)]";
     assert!(matches!(
-        prim_fault(refused(&stage(tmp.path(), "b5.usda", &body))),
+        prim_fault(refused(&stage(tmp.path(), "b5.usda", body))),
         PrimFault::TooFewPoints { .. }
     ));
 }
@@ -268,6 +266,27 @@ fn a_usdc_declaring_two_to_the_31_points_is_refused_before_allocating() {
         let e = refused(&path);
         assert!(e.to_string().contains("declares"), "{count}: {e}");
     }
+}
+
+/// The same inside a `.usdz` package (which the USD library unpacks without the resolver).
+#[test]
+fn a_usdz_holding_such_a_usdc_is_refused_too() {
+    use std::io::Write;
+    let tmp = tempfile::tempdir().unwrap();
+    let mut bytes = std::fs::read(data("upright_z_m.usdc")).unwrap();
+    let at = points_count_at(&bytes);
+    bytes[at..at + 8].copy_from_slice(&(1u64 << 31).to_le_bytes());
+    let mut zip = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let stored =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    zip.start_file("huge.usdc", stored).unwrap();
+    zip.write_all(&bytes).unwrap();
+    let package = zip.finish().unwrap().into_inner();
+    let e = refused(&write(tmp.path(), "huge.usdz", package));
+    assert!(e.to_string().contains("declares 2147483648"), "{e}");
+    // and a package cut short.
+    let whole = std::fs::read(data("upright_z_m.usdz")).unwrap();
+    refused(&write(tmp.path(), "cut.usdz", &whole[..whole.len() / 2]));
 }
 
 #[test]

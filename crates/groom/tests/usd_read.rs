@@ -267,8 +267,9 @@ fn prims_move_by_their_composed_transforms_into_centimetres_z_up() {
 fn a_y_up_centimetre_groom_and_a_z_up_metre_groom_arrive_alike_and_upright() {
     let y = fixture("upright_y_cm.usda");
     let z = fixture("upright_z_m.usdc");
+    let packaged = fixture("upright_z_m.usdz");
     let want = [[0., 0., 10.], [0., 1., 20.], [3., 0., 10.], [3., 1., 20.]];
-    for g in [&y, &z] {
+    for g in [&y, &z, &packaged] {
         for (p, w) in g.positions().iter().zip(want) {
             assert!((*p - Vec3::from_array(w)).length() < 1e-5, "{p} vs {w:?}");
         }

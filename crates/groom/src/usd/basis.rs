@@ -93,7 +93,7 @@ impl Segments {
             return None;
         }
         match (self.basis, self.pinned) {
-            (Basis::Bezier, _) => ((n - 1) % 3 == 0).then_some((n - 1) / 3),
+            (Basis::Bezier, _) => (n - 1).is_multiple_of(3).then_some((n - 1) / 3),
             (_, true) => Some(n - 1),
             (_, false) => Some(n - 3),
         }

@@ -1,7 +1,7 @@
 //! What stands between a hostile file and the USD library: every layer the stage opens passes
 //! through [`GuardedResolver`], which refuses anything but a regular file of at most
-//! [`MAX_LAYER_BYTES`], and checks a `.usdc` layer's structure ([`check_crate`]) before the
-//! library reads it: the library allocates whatever counts a file declares, so a 1 KB file that
+//! [`MAX_LAYER_BYTES`], and checks a `.usdc` layer's structure ([`check_crate`]), and each
+//! layer inside a `.usdz` package ([`check_layer`]), before the library reads it: the library allocates whatever counts a file declares, so a 1 KB file that
 //! claims 2³¹ points would exhaust memory. Whatever the library still panics on is caught
 //! ([`catch_quietly`]) and becomes one error line.
 
@@ -24,8 +24,8 @@ const MAX_TOTAL_ELEMENTS: u64 = 1 << 29;
 /// The filesystem resolver, with every opened layer checked first.
 pub struct GuardedResolver(DefaultResolver);
 
-impl GuardedResolver {
-    pub fn new() -> Self {
+impl Default for GuardedResolver {
+    fn default() -> Self {
         Self(DefaultResolver::new())
     }
 }
@@ -62,15 +62,51 @@ impl Resolver for GuardedResolver {
             )));
         }
         let bytes = asset.read_all()?;
-        if bytes.starts_with(openusd::usdc::MAGIC) {
-            check_crate(&bytes).map_err(|e| io::Error::other(format!("a broken .usdc: {e}")))?;
-        }
+        check_layer(&bytes).map_err(io::Error::other)?;
         Ok(Box::new(Cursor::new(bytes)))
     }
 
     fn identity(&self) -> String {
         "cuticle-guarded".into()
     }
+}
+
+/// A layer's bytes checked before the library reads them: a `.usdc` by [`check_crate`], a
+/// `.usdz` package entry by entry (the library reads its first layer from the zip without the
+/// resolver), text as it is (its arrays are as long as its text).
+pub fn check_layer(bytes: &[u8]) -> Result<(), String> {
+    if bytes.starts_with(openusd::usdc::MAGIC) {
+        return check_crate(bytes).map_err(|e| format!("a broken .usdc: {e}"));
+    }
+    if bytes.starts_with(b"PK\x03\x04") {
+        return check_package(bytes).map_err(|e| format!("a broken .usdz: {e}"));
+    }
+    Ok(())
+}
+
+/// Each entry of a `.usdz` (zip) package: no larger than a layer may be, and checked itself.
+fn check_package(bytes: &[u8]) -> Result<(), String> {
+    use std::io::Read;
+    let mut zip = zip::ZipArchive::new(Cursor::new(bytes)).map_err(|e| e.to_string())?;
+    for i in 0..zip.len() {
+        let entry = zip.by_index(i).map_err(|e| e.to_string())?;
+        let name = entry.name().to_string();
+        if entry.size() > MAX_LAYER_BYTES {
+            return Err(format!("{name} is {} bytes unpacked", entry.size()));
+        }
+        let mut inner = Vec::new();
+        entry
+            .take(MAX_LAYER_BYTES + 1)
+            .read_to_end(&mut inner)
+            .map_err(|e| format!("{name}: {e}"))?;
+        if inner.len() as u64 > MAX_LAYER_BYTES {
+            return Err(format!(
+                "{name} unpacks to more than {MAX_LAYER_BYTES} bytes"
+            ));
+        }
+        check_layer(&inner).map_err(|e| format!("{name}: {e}"))?;
+    }
+    Ok(())
 }
 
 /// A `.usdc` file's structure checked against its size before the library reads it: the
@@ -80,7 +116,7 @@ impl Resolver for GuardedResolver {
 pub fn check_crate(bytes: &[u8]) -> Result<(), String> {
     let len = bytes.len() as u64;
     let version = (at(bytes, 8, 1)?, at(bytes, 9, 1)?, at(bytes, 10, 1)?);
-    if version < (0, 4, 0) || version > (0, 12, 0) {
+    if !((0, 4, 0)..=(0, 12, 0)).contains(&version) {
         return Err(format!(
             "its version is {}.{}.{}; versions 0.4.0 to 0.12.0 are read",
             version.0, version.1, version.2

@@ -21,7 +21,7 @@ pub fn open(path: &Path) -> Result<Stage, UsdError> {
         .ok_or_else(|| UsdError::Open("its path is not valid UTF-8".into()))?;
     let stage = catch_quietly(|| {
         usd::Stage::builder()
-            .resolver(GuardedResolver::new())
+            .resolver(GuardedResolver::default())
             .open(text)
     })?
     .map_err(|e| UsdError::Open(one_line(&e)))?;
