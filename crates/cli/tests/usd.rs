@@ -37,7 +37,8 @@ fn groom_make_writes_usd_that_groom_info_and_render_read() {
         "info",
         hair_dir.join("groom.hair").to_str().unwrap(),
     ]);
-    for ext in ["usda"] {
+    {
+        let ext = "usda";
         let out: PathBuf = tmp.path().join(format!("groom.{ext}"));
         let shown = make(&out, "30");
         assert!(shown.contains("USD BasisCurves"), "{shown}");
