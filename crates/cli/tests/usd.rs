@@ -99,6 +99,28 @@ fn fixtures_from_pixars_library_render_with_either_method() {
     }
 }
 
+/// The scene file's `groom` key takes a USD groom too.
+#[test]
+fn a_scene_file_names_a_usd_groom() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("scene.toml");
+    let groom = fixture("primvars.usda");
+    std::fs::write(&scene, format!("groom = {groom:?}\n")).unwrap();
+    let out = tmp.path().join("out");
+    let mut args = vec![
+        "render",
+        "--device",
+        "cpu",
+        "--scene",
+        scene.to_str().unwrap(),
+    ];
+    args.extend(B);
+    args.extend(["--out", out.to_str().unwrap()]);
+    assert_runs(&args);
+    let record = std::fs::read_to_string(out.join("render.json")).unwrap();
+    assert!(record.contains("primvars.usda"), "{record}");
+}
+
 #[test]
 fn hostile_usd_is_refused_in_one_line_by_every_reader() {
     let tmp = tempfile::tempdir().unwrap();
