@@ -1,5 +1,5 @@
-//! [`Groom::read`]: one entry for every groom file, dispatched on its first bytes, then its
-//! extension: cyHair `.hair`, or a USD stage (`.usda`, `.usdc`, `.usdz`, `.usd`).
+//! [`Groom::read`]: one entry for every groom file, dispatched on its extension, then its first
+//! bytes: cyHair `.hair`, or a USD stage (`.usda`, `.usdc`, `.usdz`, `.usd`).
 
 use crate::error::HairFileError;
 use crate::groom::Groom;
@@ -25,10 +25,22 @@ pub enum GroomFormat {
 }
 
 impl GroomFormat {
-    /// The format of the file at `path`: its magic bytes (`HAIR`, `PXR-USDC`, `#usda`, a zip's
-    /// `PK`), else its extension; anything unrecognised is taken for `.hair`, whose reader
-    /// says what is wrong with it.
+    /// The format of the file at `path`: its extension (`.hair`; `.usda`, `.usdc`, `.usdz`,
+    /// `.usd`), else its magic bytes (`HAIR`; `PXR-USDC`, `#usda`, a zip's `PK`); anything
+    /// else is taken for `.hair`, whose reader says what is wrong with it. A `.hair` file is
+    /// always read as one, so its errors are what they were before USD.
     pub fn of(path: &Path) -> Self {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        if ext == "hair" {
+            return Self::Hair;
+        }
+        if usd::EXTENSIONS.contains(&ext.as_str()) {
+            return Self::Usd;
+        }
         let mut head = [0u8; 8];
         let n = crate::hair_file::read::regular_file_len(path)
             .ok()
@@ -36,14 +48,7 @@ impl GroomFormat {
             .and_then(|mut f| f.read(&mut head).ok())
             .unwrap_or(0);
         let head = &head[..n];
-        if head.starts_with(b"HAIR") {
-            return Self::Hair;
-        }
         if head.starts_with(b"PXR-USDC") || head.starts_with(b"#usda") || head.starts_with(b"PK") {
-            return Self::Usd;
-        }
-        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if usd::EXTENSIONS.contains(&ext.to_ascii_lowercase().as_str()) {
             Self::Usd
         } else {
             Self::Hair

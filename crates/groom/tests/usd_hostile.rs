@@ -318,8 +318,15 @@ fn hair_files_keep_their_reader_and_their_errors() {
         Groom::read(tmp.path()).unwrap_err(),
         GroomReadError::Hair(_)
     ));
-    // a USD stage under a .hair name is known by its content, and told to say what it is.
+    // a .hair name is read as .hair whatever it holds: a USD stage there gets the .hair error.
     let usda = std::fs::read(data("bases.usda")).unwrap();
-    let named = write(tmp.path(), "really.hair", usda);
-    assert!(refused(&named).to_string().contains("extension"));
+    let named = write(tmp.path(), "really.hair", &usda);
+    let e = Groom::read(&named).unwrap_err();
+    assert!(
+        matches!(e, GroomReadError::Hair(_)) && e.to_string().contains("\"HAIR\""),
+        "{e}"
+    );
+    // with no extension the content decides, and the USD reader asks for one.
+    let bare = write(tmp.path(), "groom", &usda);
+    assert!(refused(&bare).to_string().contains("extension"));
 }

@@ -60,6 +60,7 @@ pub fn read(path: impl AsRef<Path>) -> Result<Groom, UsdError> {
 
 fn read_stage(path: &Path) -> Result<Groom, UsdError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    // The library picks a layer's format by its extension.
     if !EXTENSIONS.contains(&ext) {
         return Err(UsdError::Open(format!(
             "a USD stage is read by its extension, and {ext:?} is none of {EXTENSIONS:?}"
