@@ -99,6 +99,54 @@ fn fixtures_from_pixars_library_render_with_either_method() {
     }
 }
 
+/// A stage of 12 thick vertical strands whose eumelanin primvar is `eumelanin` (uniform).
+fn pigmented(dir: &Path, name: &str, eumelanin: [f32; 2]) -> String {
+    let points: Vec<String> = (0..12)
+        .flat_map(|i| {
+            let x = i as f32 * 0.4 - 2.2;
+            [format!("({x}, 0, -3)"), format!("({x}, 0, 3)")]
+        })
+        .collect();
+    let values: Vec<String> = (0..12).map(|i| eumelanin[i % 2].to_string()).collect();
+    let text = format!(
+        "#usda 1.0\n(\n    metersPerUnit = 0.01\n    upAxis = \"Z\"\n)\ndef BasisCurves \"Hair\"\n{{\n    uniform token type = \"linear\"\n    int[] curveVertexCounts = [{}]\n    point3f[] points = [{}]\n    float[] widths = [0.3] (interpolation = \"constant\")\n    float[] primvars:eumelanin = [{}] (interpolation = \"uniform\")\n}}\n",
+        vec!["2"; 12].join(", "),
+        points.join(", "),
+        values.join(", ")
+    );
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path.display().to_string()
+}
+
+/// Mean of the image's channels.
+fn mean_of(png: &Path) -> f64 {
+    let image = image::open(png).unwrap().to_rgb8();
+    image.pixels().flat_map(|p| p.0).map(f64::from).sum::<f64>() / (image.len() as f64)
+}
+
+/// Per-curve melanin from the stage is what the strands are shaded with: all-blonde renders
+/// brighter than half-black, and half-black brighter than all-black.
+#[test]
+fn per_curve_melanin_shades_each_strand() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut means = Vec::new();
+    for (name, eu) in [
+        ("blonde", [0.1, 0.1]),
+        ("mixed", [0.1, 8.0]),
+        ("black", [8.0, 8.0]),
+    ] {
+        let groom = pigmented(tmp.path(), &format!("{name}.usda"), eu);
+        let out = tmp.path().join(name);
+        let mut args = vec!["render", "--device", "cpu", "--groom", &groom];
+        args.extend(B);
+        args.extend(["--out", out.to_str().unwrap()]);
+        assert_runs(&args);
+        means.push(mean_of(&out.join("image.png")));
+    }
+    assert!(means[0] > means[1] && means[1] > means[2], "{means:?}");
+}
+
 /// The scene file's `groom` key takes a USD groom too.
 #[test]
 fn a_scene_file_names_a_usd_groom() {
