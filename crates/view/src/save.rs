@@ -5,6 +5,11 @@
 //!   says `shading_points = false`, so that reopening adds none);
 //! - `groom.absorption.json`: every strand's absorption as the renderer reads it, paint
 //!   included ([`cuticle_groom::strand_absorption`]);
+//! - `groom.usda`: the same groom as USD `BasisCurves` for other tools (Houdini, Blender), each
+//!   strand's absorption as per-curve primvars: `sigma_a` for every strand (the μ_a it is
+//!   shaded with, the scene's default where it has none of its own), and `eumelanin` /
+//!   `pheomelanin` (and Blender's `melanin` / `melanin_redness`) where it came with melanin
+//!   ([`cuticle_groom::usd::write`]);
 //! - `scene.toml`: the scene's settings, naming the two files above by absolute path, the
 //!   camera as it stands, the environment map and its rotation (the lights are fitted again on
 //!   opening, deterministically, as they were for this view).
@@ -18,6 +23,7 @@ use std::path::{Path, PathBuf};
 pub const SCENE: &str = "scene.toml";
 pub const GROOM: &str = "groom.hair";
 pub const ABSORPTION: &str = "groom.absorption.json";
+pub const GROOM_USD: &str = "groom.usda";
 
 /// The files of a saved look, as (name, bytes).
 pub fn look_files(look: &Look, dir: &Path) -> Result<Vec<(&'static str, Vec<u8>)>, String> {
@@ -27,6 +33,7 @@ pub fn look_files(look: &Look, dir: &Path) -> Result<Vec<(&'static str, Vec<u8>)
         .to_hair_bytes("cuticle view: painted groom")
         .map_err(|e| format!("cannot encode the groom: {e}"))?;
     let absorption = cuticle_groom::strand_absorption::to_bytes(&scene.groom);
+    let usd = usd_bytes(&scene.groom, scene.spec.hair.default_mu_a)?;
     let mut spec = scene.spec.clone();
     spec.groom = dir.join(GROOM).display().to_string();
     // groom.hair holds the points the view shades: reopened, it keeps them.
@@ -44,8 +51,21 @@ pub fn look_files(look: &Look, dir: &Path) -> Result<Vec<(&'static str, Vec<u8>)
     Ok(vec![
         (GROOM, groom),
         (ABSORPTION, absorption),
+        (GROOM_USD, usd),
         (SCENE, text.into_bytes()),
     ])
+}
+
+/// The groom as USD, every strand with the absorption it is shaded with: its own, else the
+/// scene's default μ_a.
+fn usd_bytes(groom: &cuticle_groom::Groom, default_mu_a: [f64; 3]) -> Result<Vec<u8>, String> {
+    let mut groom = groom.clone();
+    let fallback = cuticle_groom::Absorption::MuA(default_mu_a.map(|c| c as f32));
+    for a in groom.appearance_mut() {
+        a.absorption = a.absorption.or(Some(fallback));
+    }
+    cuticle_groom::usd::to_usd_bytes(&groom, cuticle_groom::usd::UsdFormat::Usda)
+        .map_err(|e| format!("cannot encode the groom as USD: {e}"))
 }
 
 /// Saves `look` into the folder `dir` (made absolute); returns the scene file's path.
@@ -114,4 +134,61 @@ fn write_set(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), String> {
         let _ = std::fs::remove_dir_all(&old);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use cuticle_groom::procedural::{GroomParams, Preset, generate};
+    use cuticle_groom::{Absorption, Groom};
+    use cuticle_light::EnvMap;
+    use cuticle_render::scene::{Scene, SceneSpec};
+
+    /// A saved look's groom.usda holds each strand's absorption: painted μ_a, the groom's own
+    /// melanin, or the scene's default μ_a; and the set is written whole with it.
+    #[test]
+    fn the_saved_set_holds_the_painted_groom_as_usd() {
+        let mut groom = generate(&GroomParams {
+            strands: 12,
+            ..Preset::Straight.params()
+        })
+        .unwrap();
+        for (s, a) in groom.appearance_mut().iter_mut().enumerate() {
+            a.absorption = (s % 2 == 0).then_some(Absorption::Melanin {
+                eumelanin: 1.25,
+                pheomelanin: 0.5,
+            });
+        }
+        let env = EnvMap::new(16, 8, vec![glam::Vec3::ONE; 16 * 8]);
+        let spec = SceneSpec::default();
+        let default_mu_a = spec.hair.default_mu_a.map(|c| c as f32);
+        let mut look = Look::from_scene(Scene::from_parts(spec, groom, env, Vec::new()));
+        let painted = Absorption::MuA([0.5, 0.25, 0.125]);
+        look.paint[3] = Some(painted);
+        look.paint[4] = Some(painted);
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("look");
+        save_look(&look, &dir).unwrap();
+        let mut names: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        assert_eq!(names, [ABSORPTION, GROOM, GROOM_USD, SCENE]);
+        let usd = Groom::read(dir.join(GROOM_USD)).unwrap();
+        let hair = Groom::read(dir.join(GROOM)).unwrap();
+        assert_eq!(usd.positions(), hair.positions());
+        assert_eq!(usd.thickness(), hair.thickness());
+        for (s, a) in usd.appearance().iter().enumerate() {
+            let want = match s {
+                3 | 4 => painted,
+                s if s % 2 == 0 => Absorption::Melanin {
+                    eumelanin: 1.25,
+                    pheomelanin: 0.5,
+                },
+                _ => Absorption::MuA(default_mu_a),
+            };
+            assert_eq!(a.absorption, Some(want), "strand {s}");
+        }
+    }
 }

@@ -1,10 +1,12 @@
-//! `cuticle groom`: look inside `.hair` files (`info`) and write procedural grooms (`make`).
+//! `cuticle groom`: look inside `.hair` and USD groom files (`info`) and write procedural grooms
+//! (`make`), as a `.hair` folder set or one USD file.
 
 use crate::output::OutDir;
 use anyhow::{Context, Result};
-use cuticle_groom::HairFile;
 use cuticle_groom::procedural::{GroomParams, Preset, generate};
 use cuticle_groom::summary::{HairFileSummary, Stats};
+use cuticle_groom::usd::{UsdFormat, to_usd_bytes};
+use cuticle_groom::{Groom, GroomFormat, HairFile};
 use cuticle_render::scene::STRANDS;
 use cuticle_render::scene::memory::{Advice, MemoryNeed};
 use serde_json::json;
@@ -20,15 +22,16 @@ pub struct Args {
 
 #[derive(clap::Subcommand)]
 enum GroomCommand {
-    /// Counts, bounds, strand lengths and arrays of a .hair file.
+    /// Counts, bounds, strand lengths and arrays of a .hair or USD (.usda/.usdc/.usdz) groom.
     Info(InfoArgs),
-    /// Generate a procedural groom and write it as a .hair file (with a JSON record beside it).
+    /// Generate a procedural groom and write it as a .hair file (with a JSON record beside it),
+    /// or as one USD file (BasisCurves) when --out ends in .usda.
     Make(MakeArgs),
 }
 
 #[derive(clap::Args)]
 struct InfoArgs {
-    /// The .hair file to describe.
+    /// The groom file to describe (.hair, .usda, .usdc, .usdz).
     file: PathBuf,
     /// Print the summary as JSON on stdout instead of text.
     #[arg(long)]
@@ -46,7 +49,9 @@ struct MakeArgs {
     /// Random seed [default: the preset's, 1].
     #[arg(long)]
     seed: Option<u64>,
-    /// Output folder: `groom.hair` and `groom.json` (the parameters), written as one set.
+    /// Output folder: `groom.hair` and `groom.json` (the parameters), written as one set; or a
+    /// file FILE.usda: the groom as USD BasisCurves, written whole (.usdc is refused: openusd
+    /// 0.6's binary files do not open in Pixar's USD).
     #[arg(long)]
     out: PathBuf,
 }
@@ -59,8 +64,15 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 fn info(args: &InfoArgs) -> Result<()> {
-    let file = HairFile::read(&args.file)
-        .with_context(|| format!("cannot read {}", args.file.display()))?;
+    let context = || format!("cannot read {}", args.file.display());
+    let file = match GroomFormat::of(&args.file) {
+        GroomFormat::Hair => HairFile::read(&args.file).with_context(context)?,
+        // A USD groom is described as the .hair file that would hold it.
+        GroomFormat::Usd => {
+            let groom = Groom::read(&args.file).with_context(context)?;
+            HairFile::from_groom(&groom, "read from USD").with_context(context)?
+        }
+    };
     let summary = HairFileSummary::of(&file);
     let text = if args.json {
         let mut value = serde_json::to_value(&summary)?;
@@ -94,6 +106,9 @@ fn make(args: &MakeArgs) -> Result<()> {
             lower: "lower --strands",
         },
     )?;
+    if let Some(format) = usd_out(&args.out)? {
+        return make_usd(args, &params, format);
+    }
     let mut out = OutDir::create(&args.out, "groom")?;
     let start = Instant::now();
     let groom = generate(&params)?;
@@ -117,6 +132,41 @@ fn make(args: &MakeArgs) -> Result<()> {
         params.seed,
         seconds,
         record_path.display()
+    );
+    Ok(())
+}
+
+/// The USD format `--out` names by its extension, if any; `.usdz` is refused here, `.usdc` by
+/// the writer.
+fn usd_out(out: &Path) -> Result<Option<UsdFormat>> {
+    match out.extension().and_then(|e| e.to_str()) {
+        Some("usdz") => anyhow::bail!(
+            "--out {}: .usdz is not written; name a .usda file",
+            out.display()
+        ),
+        _ => Ok(UsdFormat::of_path(out)),
+    }
+}
+
+/// `make` into one USD file, written whole (a temporary file renamed over it).
+fn make_usd(args: &MakeArgs, params: &GroomParams, format: UsdFormat) -> Result<()> {
+    anyhow::ensure!(
+        format == UsdFormat::Usda,
+        "--out {}: {}",
+        args.out.display(),
+        cuticle_groom::usd::write::NO_USDC
+    );
+    let groom = generate(params)?;
+    let bytes =
+        to_usd_bytes(&groom, format).with_context(|| format!("--out {}", args.out.display()))?;
+    crate::output::write_file_atomic(&args.out, &bytes)?;
+    println!(
+        "wrote {}: {} strands, {} points ({} preset, seed {}) as USD BasisCurves",
+        args.out.display(),
+        groom.strand_count(),
+        groom.point_count(),
+        args.preset,
+        params.seed
     );
     Ok(())
 }

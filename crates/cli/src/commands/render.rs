@@ -39,7 +39,7 @@ pub struct SceneArgs {
     /// A TOML scene file (keys as in SceneSpec); flags override it.
     #[arg(long)]
     scene: Option<PathBuf>,
-    /// A groom preset (straight, wavy, curly) or a .hair file.
+    /// A groom preset (straight, wavy, curly), a .hair file or a USD groom (.usda, .usdc, .usdz).
     #[arg(long)]
     groom: Option<String>,
     /// Strands of a preset groom.

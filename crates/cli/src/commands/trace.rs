@@ -370,7 +370,7 @@ fn coverage_exr(t: &TraceImage) -> Result<Vec<u8>> {
 /// `cuticle bench trace`'s flags.
 #[derive(clap::Args, Clone, Debug)]
 pub struct TraceBenchArgs {
-    /// A groom preset or a .hair file.
+    /// A groom preset, a .hair file or a USD groom (.usda, .usdc, .usdz).
     #[arg(long, default_value = "../shared/data/hair/straight.hair")]
     pub groom: String,
     /// Environment: default, constant:R,G,B or an .hdr/.exr map.

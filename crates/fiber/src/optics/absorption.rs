@@ -13,6 +13,11 @@ pub fn mu_a_from_melanin(eumelanin: f64, pheomelanin: f64) -> DVec3 {
     eumelanin.max(0.0) * EUMELANIN_SIGMA_A + pheomelanin.max(0.0) * PHEOMELANIN_SIGMA_A
 }
 
+/// Azimuthal roughness β_n at which a colour is inverted into μ_a ([`mu_a_from_color`]) where
+/// no model is at hand: the window's colour editor and USD grooms' `displayColor` (Chiang et
+/// al. 2016 eq. 9 is stated for their model; Marschner's caustic width plays the part there).
+pub const COLOUR_BETA_N: f64 = 0.3;
+
 /// μ_a that gives a fiber of azimuthal roughness `beta_n` the multiply scattered colour `color`
 /// (each channel in (0, 1]): Chiang et al. 2016, eq. 9, μ_a = (ln c / P(β_n))² with their
 /// fifth-order polynomial P.

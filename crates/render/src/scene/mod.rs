@@ -472,7 +472,8 @@ pub fn load_env(spec: &str) -> Result<EnvMap, SceneError> {
     Ok(EnvMap::new(16, 8, vec![rgb; 16 * 8]))
 }
 
-/// A preset name or a `.hair` path.
+/// A preset name, or a groom file: `.hair` or USD (`.usda`, `.usdc`, `.usdz`), by
+/// [`Groom::read`].
 pub fn load_groom(spec: &str, strands: usize) -> Result<Groom, SceneError> {
     match spec.parse::<Preset>() {
         Ok(preset) => {
@@ -482,7 +483,7 @@ pub fn load_groom(spec: &str, strands: usize) -> Result<Groom, SceneError> {
             };
             generate(&params).map_err(|e| SceneError::Groom(e.to_string()))
         }
-        Err(_) => Groom::read_hair(spec).map_err(|e| SceneError::Groom(format!("{spec}: {e}"))),
+        Err(_) => Groom::read(spec).map_err(|e| SceneError::Groom(format!("{spec}: {e}"))),
     }
 }
 

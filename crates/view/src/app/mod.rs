@@ -79,9 +79,9 @@ pub enum AbsorptionEdit {
     Colour([f32; 3]),
 }
 
-/// Azimuthal roughness β_n at which a target colour is inverted into μ_a (Chiang et al. 2016
-/// eq. 9 is stated for their model; Marschner's caustic width plays the part here).
-pub const COLOUR_BETA_N: f64 = 0.3;
+/// Azimuthal roughness β_n at which a target colour is inverted into μ_a: the fiber crate's,
+/// which USD grooms' colours use too.
+pub use cuticle_fiber::optics::absorption::COLOUR_BETA_N;
 
 impl AbsorptionEdit {
     /// The absorption this edit sets (`None` for the strands' own).
@@ -355,7 +355,7 @@ impl ViewApp {
         self.paint_serial += 1;
     }
 
-    /// Starts loading a groom (preset or `.hair`).
+    /// Starts loading a groom (preset, `.hair` or USD).
     pub fn load_groom(&mut self) {
         let name = self.controls.groom_text.trim().to_string();
         self.groom_job = Some(jobs::load_groom(

@@ -455,7 +455,7 @@ fn groom(app: &mut ViewApp, ui: &mut Ui) {
                 ui.add(
                     egui::TextEdit::singleline(&mut app.controls.groom_text).desired_width(200.0),
                 )
-                .on_hover_text("a preset (straight, wavy, curly) or a .hair file");
+                .on_hover_text("a preset (straight, wavy, curly), a .hair file or a USD groom (.usda, .usdc, .usdz)");
                 load = ui.button("load groom").clicked();
             });
             ui.add(
@@ -539,7 +539,7 @@ fn files(app: &mut ViewApp, ui: &mut Ui) {
                 if ui
                     .button("save look")
                     .on_hover_text(
-                        "groom.hair, groom.absorption.json and scene.toml into FOLDER/look",
+                        "groom.hair, groom.absorption.json, groom.usda and scene.toml into FOLDER/look",
                     )
                     .clicked()
                 {
