@@ -146,12 +146,24 @@ impl CountRange {
         if self.contains(n) {
             Ok(n)
         } else {
-            Err(RangeError {
-                name: self.name,
-                value: n as f64,
-                rule: format!("a whole number in {self}"),
-            })
+            Err(self.error(n as f64))
         }
+    }
+
+    fn error(&self, value: f64) -> RangeError {
+        RangeError {
+            name: self.name,
+            value,
+            rule: format!("a whole number in {self}"),
+        }
+    }
+
+    /// [`Self::check`] for a signed count (as a language without unsigned integers passes
+    /// one): a negative `n` is refused as any other outside the range.
+    pub fn check_signed(&self, n: i64) -> Result<u64, RangeError> {
+        u64::try_from(n)
+            .map_err(|_| self.error(n as f64))
+            .and_then(|n| self.check(n))
     }
 
     /// [`Self::check`] for a `usize`.
@@ -296,6 +308,13 @@ pub const CAUSTIC_LIMIT: Range = Range {
     unit: "",
 };
 
+/// Fixed-point iterations per sample of the non-separable model (d'Eon et al. 2014 uses 6).
+pub const ITERATIONS: CountRange = CountRange {
+    name: "iterations",
+    min: 1,
+    max: 1000,
+};
+
 /// Importance samples one command draws (the simulator's `MAX_RAYS` too): minutes of work.
 pub const SAMPLES: CountRange = CountRange {
     name: "samples",
@@ -363,5 +382,10 @@ mod tests {
             "samples must be a whole number in 1..=1000000000, got 0"
         );
         assert_eq!(SAMPLES.check(5), Ok(5));
+        assert_eq!(SAMPLES.check_signed(5), Ok(5));
+        assert_eq!(
+            SAMPLES.check_signed(-3).unwrap_err().to_string(),
+            "samples must be a whole number in 1..=1000000000, got -3"
+        );
     }
 }
