@@ -176,6 +176,20 @@ pub fn rgb_image<'py>(
         .into_pyarray(py)
 }
 
+/// RGB pixels, row-major, rounded to float32 as the command line's EXRs store them, as an
+/// array of shape (height, width, 3).
+pub fn rgb_image_f32<'py>(
+    py: Python<'py>,
+    width: usize,
+    height: usize,
+    pixels: &[DVec3],
+) -> Bound<'py, PyArray<f32, Ix3>> {
+    let flat: Vec<f32> = pixels.iter().flat_map(|p| p.as_vec3().to_array()).collect();
+    Array::from_shape_vec((height, width, 3), flat)
+        .expect("width × height pixels")
+        .into_pyarray(py)
+}
+
 /// A shape as Python prints it: `(3, 2)`, `(4,)`.
 fn python_shape(shape: &[usize]) -> String {
     match shape {

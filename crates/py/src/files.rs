@@ -1,9 +1,9 @@
 //! Images on disk: `cuticle.read_exr` reads the EXRs the command line writes (lobe images,
 //! renders) through the reader the command line itself uses (`cuticle_light::image_file`).
 
+use crate::arrays::rgb_image_f32;
 use crate::errors::value_error;
-use numpy::ndarray::Array;
-use numpy::{IntoPyArray, PyArray3};
+use numpy::PyArray3;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 
@@ -15,12 +15,5 @@ pub fn read_exr(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyArray3<f3
     let image = py
         .detach(|| cuticle_light::image_file::read_rgb_exr(&path))
         .map_err(value_error)?;
-    let flat: Vec<f32> = image
-        .pixels
-        .iter()
-        .flat_map(|p| p.as_vec3().to_array())
-        .collect();
-    Ok(Array::from_shape_vec((image.height, image.width, 3), flat)
-        .expect("width × height pixels")
-        .into_pyarray(py))
+    Ok(rgb_image_f32(py, image.width, image.height, &image.pixels))
 }

@@ -3,6 +3,7 @@
 //! [`SceneOverrides`] over its defaults or a TOML file, loaded within the memory available,
 //! rendered on the CPU), so a render gives the command's pixels.
 
+use crate::arrays::rgb_image_f32;
 use crate::errors::{error_line, value_error};
 use crate::rgb::rgb_argument;
 use cuticle_fiber::ranges::CountRange;
@@ -136,14 +137,7 @@ pub fn render<'py>(
         Ok(image)
     });
     let image = image.map_err(value_error)?;
-    let flat: Vec<f32> = image
-        .pixels
-        .iter()
-        .flat_map(|p| p.as_vec3().to_array())
-        .collect();
-    Ok(Array::from_shape_vec((image.height, image.width, 3), flat)
-        .expect("width × height pixels")
-        .into_pyarray(py))
+    Ok(rgb_image_f32(py, image.width, image.height, &image.pixels))
 }
 
 /// A groom as the renderer loads it: a preset ("straight", "wavy", "curly", with `strands`
