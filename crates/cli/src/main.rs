@@ -3,7 +3,6 @@
 
 mod commands;
 mod latlong_io;
-mod memory;
 mod output;
 mod progress;
 mod svg_plot;

@@ -110,7 +110,7 @@ fn pigmented(dir: &Path, name: &str, eumelanin: [f32; 2]) -> String {
     let values: Vec<String> = (0..12).map(|i| eumelanin[i % 2].to_string()).collect();
     let text = format!(
         "#usda 1.0\n(\n    metersPerUnit = 0.01\n    upAxis = \"Z\"\n)\ndef BasisCurves \"Hair\"\n{{\n    uniform token type = \"linear\"\n    int[] curveVertexCounts = [{}]\n    point3f[] points = [{}]\n    float[] widths = [0.3] (interpolation = \"constant\")\n    float[] primvars:eumelanin = [{}] (interpolation = \"uniform\")\n}}\n",
-        vec!["2"; 12].join(", "),
+        ["2"; 12].join(", "),
         points.join(", "),
         values.join(", ")
     );

@@ -35,6 +35,19 @@ pub struct FurnaceRule {
     pub resolution: usize,
 }
 
+impl FurnaceRule {
+    /// The default rule for a fiber of roughness `beta` and scale tilt `alpha_deg` (degrees):
+    /// the finest panels span the cone shifts of up to six tilts (TRRT's, d'Eon et al. 2014
+    /// §2.2), at resolution 1 (what `cuticle lobes`, `cuticle furnace` and the bindings use).
+    pub fn for_fiber(beta: f64, alpha_deg: f64) -> Self {
+        Self {
+            beta,
+            max_shift: 6.0 * alpha_deg.abs().to_radians(),
+            resolution: 1,
+        }
+    }
+}
+
 /// Gauss–Legendre points per panel (`cuticle lobes`' pixel means use the same).
 pub const NODES_PER_PANEL: usize = 8;
 /// φ panels at resolution 1.

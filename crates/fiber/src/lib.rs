@@ -11,8 +11,9 @@
 //! - [`models`]: one folder per model — [`Marschner2003`], [`DEon2011`] (with its azimuthal
 //!   table), [`Chiang2016`] (near-field in h, [`FiberModel::eval_at`]) and [`NonSeparable`]
 //!   (whose tilted and rough scales are its own rooms, which d'Eon 2011 does not see);
-//! - [`registry`]: every model by name ([`ModelId`]), built tabulated or direct; [`furnace`],
-//!   the white-furnace integrator.
+//! - [`registry`]: every model by name ([`ModelId`]), built tabulated or direct; [`spec`], a
+//!   named model with its parameters checked ([`ModelSpec`]); [`furnace`], the white-furnace
+//!   integrator.
 //!
 //! Adding a model: its folder under `models/` implementing [`FiberModel`] (and
 //! [`FiberModel::tabulate`] if it has a fast path), its `pub mod` line in `models/mod.rs`, its
@@ -40,6 +41,7 @@ pub mod optics;
 pub mod params;
 pub mod ranges;
 pub mod registry;
+pub mod spec;
 #[cfg(test)]
 pub(crate) mod testing;
 
@@ -54,6 +56,7 @@ pub use models::nonseparable::NonSeparable;
 pub use params::{FiberParams, ParamError};
 pub use ranges::{Range, RangeError};
 pub use registry::{BuildOptions, ModelId, Tabulation};
+pub use spec::{ModelSpec, SpecError};
 
 // The module paths before the fiber crate moved into rooms, for the crates whose owners move
 // them to the new ones (render, gpu, the command line).

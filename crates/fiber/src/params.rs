@@ -14,13 +14,16 @@ pub struct FiberParams {
     pub mu_a: DVec3,
 }
 
+/// The default scale tilt α, degrees ([`FiberParams::default`]'s, as the command line types it).
+pub const DEFAULT_ALPHA_DEG: f64 = -2.0;
+
 impl Default for FiberParams {
     /// Human hair in air: η = 1.55, β = 0.04, α = −2°, a light brown μ_a.
     fn default() -> Self {
         Self {
             eta: 1.55,
             beta: 0.04,
-            alpha: (-2.0f64).to_radians(),
+            alpha: DEFAULT_ALPHA_DEG.to_radians(),
             mu_a: DVec3::new(0.12, 0.25, 0.5),
         }
     }

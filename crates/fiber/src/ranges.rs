@@ -115,6 +115,13 @@ pub const CAUSTIC_LIMIT: Range = Range {
     unit: "",
 };
 
+/// Fixed-point iterations per sample of the non-separable model (d'Eon et al. 2014 uses 6).
+pub const ITERATIONS: CountRange = CountRange {
+    name: "iterations",
+    min: 1,
+    max: 1000,
+};
+
 /// Importance samples one command draws (the simulator's `MAX_RAYS` too): minutes of work.
 pub const SAMPLES: CountRange = CountRange {
     name: "samples",
@@ -170,5 +177,10 @@ mod tests {
             "samples must be a whole number in 1..=1000000000, got 0"
         );
         assert_eq!(SAMPLES.check(5), Ok(5));
+        assert_eq!(SAMPLES.check_signed(5), Ok(5));
+        assert_eq!(
+            SAMPLES.check_signed(-3).unwrap_err().to_string(),
+            "samples must be a whole number in 1..=1000000000, got -3"
+        );
     }
 }

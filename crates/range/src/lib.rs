@@ -147,12 +147,24 @@ impl CountRange {
         if self.contains(n) {
             Ok(n)
         } else {
-            Err(RangeError {
-                name: self.name,
-                value: n as f64,
-                rule: format!("a whole number in {self}"),
-            })
+            Err(self.error(n as f64))
         }
+    }
+
+    fn error(&self, value: f64) -> RangeError {
+        RangeError {
+            name: self.name,
+            value,
+            rule: format!("a whole number in {self}"),
+        }
+    }
+
+    /// [`Self::check`] for a signed count (as a language without unsigned integers passes
+    /// one): a negative `n` is refused as any other outside the range.
+    pub fn check_signed(&self, n: i64) -> Result<u64, RangeError> {
+        u64::try_from(n)
+            .map_err(|_| self.error(n as f64))
+            .and_then(|n| self.check(n))
     }
 
     /// [`Self::check`] for a `usize`.

@@ -11,7 +11,9 @@
 //! smooth. The defaults (8, 3, 3) conserve each lobe's energy, as `furnace::albedo` integrates
 //! it independently (the bound is test `pixel_integral_conserves_energy`'s).
 
+use cuticle_fiber::furnace::{self, FurnaceRule};
 use cuticle_fiber::math::GaussLegendre;
+use cuticle_fiber::ranges::{CountRange, RangeError};
 use cuticle_fiber::{FiberAngles, FiberModel, LatLongGrid, LatLongImage};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -80,6 +82,64 @@ impl PixelRule {
     fn phi_nodes(&self) -> &'static GaussLegendre {
         GaussLegendre::cached(self.phi_nodes)
     }
+}
+
+/// Width of the lobe images of [`lobe_grid`] (their height is a quarter of it): at most
+/// 4000 × 1000, 0.5 GB for the five lobes and their sum.
+pub const LOBE_WIDTH: CountRange = CountRange {
+    name: "width",
+    min: 8,
+    max: 4000,
+};
+
+/// A width that is not one of [`lobe_grid`]'s.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum LobeGridError {
+    #[error(transparent)]
+    Range(#[from] RangeError),
+    #[error("width must be a multiple of 4, got {0}")]
+    NotMultipleOfFour(usize),
+}
+
+/// The grid of `cuticle lobes`' images (and the bindings' `Fiber.latlong`): `width` in
+/// [`LOBE_WIDTH`], a multiple of 4, and a quarter as high.
+pub fn lobe_grid(width: usize) -> Result<LatLongGrid, LobeGridError> {
+    LOBE_WIDTH.check_usize(width)?;
+    if !width.is_multiple_of(4) {
+        return Err(LobeGridError::NotMultipleOfFour(width));
+    }
+    Ok(LatLongGrid::new(width, width / 4))
+}
+
+/// Points in φ per column of [`lobe_images`]: columns are π/200 wide at the default width, and
+/// S varies slowly in φ on that scale.
+const LOBE_PHI_NODES: usize = 3;
+
+/// `cuticle lobes`' images (and the bindings' `Fiber.latlong`): each lobe's pixel means for
+/// light at `theta_i`, on `rule`'s θ panels at the resolution the furnace reports
+/// ([`integrate_lobes_on_breaks`]), so that their energy is the furnace's.
+pub fn lobe_images(
+    model: &dyn FiberModel,
+    theta_i: f64,
+    grid: LatLongGrid,
+    rule: FurnaceRule,
+) -> [LatLongImage; 5] {
+    let breaks = furnace::theta_breaks(theta_i, rule, 2 * rule.resolution.max(1));
+    integrate_lobes_on_breaks(
+        model,
+        theta_i,
+        grid,
+        &breaks,
+        furnace::NODES_PER_PANEL,
+        LOBE_PHI_NODES,
+    )
+}
+
+/// The sum of the lobe images (`total.exr`).
+pub fn total(lobes: &[LatLongImage; 5]) -> LatLongImage {
+    let mut sum = LatLongImage::zeros(lobes[0].grid);
+    lobes.iter().for_each(|image| sum.add(image));
+    sum
 }
 
 /// The five lobe images of `model` for light at `theta_i`, each pixel the mean of S over it, in

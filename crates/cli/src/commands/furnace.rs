@@ -77,11 +77,7 @@ pub fn run(args: Args) -> Result<()> {
         .par_iter()
         .map(|&(beta, theta_i)| {
             let model = &models[betas.iter().position(|&b| b == beta).unwrap_or(0)];
-            let rule = FurnaceRule {
-                beta,
-                max_shift: 6.0 * args.fiber.alpha_deg.abs().to_radians(),
-                resolution: 1,
-            };
+            let rule = FurnaceRule::for_fiber(beta, args.fiber.alpha_deg);
             let est = albedo(model.as_ref(), theta_i, rule);
             progress.inc(1);
             (beta, theta_i, est)

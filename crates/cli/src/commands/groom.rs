@@ -100,7 +100,7 @@ fn make(args: &MakeArgs) -> Result<()> {
         parts: vec![("the groom", points.saturating_mul(MAKE_BYTES_PER_POINT))],
     }
     .check_for(
-        crate::memory::available(),
+        cuticle_render::scene::headroom::available(),
         Advice {
             what: "groom",
             lower: "lower --strands",

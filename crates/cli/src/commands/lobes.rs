@@ -13,11 +13,12 @@ use crate::latlong_io::{LOBE_FILES, png_bytes_with_white, white_point, write_ima
 use crate::output::OutDir;
 use crate::progress::bar;
 use crate::svg_plot::{Series, line_plot};
-use anyhow::{Result, bail};
+use anyhow::Result;
 use cuticle_fiber::latlong::index_of_dir;
 use cuticle_fiber::lobe::channel_mean;
-use cuticle_fiber::ranges::{self, CountRange};
+use cuticle_fiber::ranges;
 use cuticle_fiber::{FiberAngles, FiberModel, LatLongGrid, LatLongImage, Lobe};
+use cuticle_validate::pixel_integral::{lobe_grid, lobe_images, total};
 use glam::DVec3;
 use rand_core::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -51,37 +52,22 @@ pub struct Args {
 /// number of threads.
 const CHUNK: u64 = 1 << 14;
 
-/// Width of the lobe images (their height is a quarter of it): at most 4000 × 1000, 0.5 GB
-/// for the five lobes and their sum.
-pub const WIDTH: CountRange = CountRange {
-    name: "width",
-    min: 8,
-    max: 4000,
-};
-
 pub fn run(args: Args) -> Result<()> {
     ranges::THETA_I.check(args.theta_i)?;
-    WIDTH.check_usize(args.width)?;
-    if !args.width.is_multiple_of(4) {
-        bail!("width must be a multiple of 4, got {}", args.width);
-    }
+    let grid = lobe_grid(args.width)?;
     if args.samples > 0 {
         ranges::SAMPLES.check(args.samples)?;
     }
     let model = args.fiber.model()?;
-    let grid = LatLongGrid::new(args.width, args.width / 4);
     let wi = FiberAngles::new(args.theta_i, 0.0);
     let mut out = OutDir::create(&args.out, "lobes")?;
 
-    let rule = cuticle_fiber::furnace::FurnaceRule {
-        beta: args.fiber.beta,
-        max_shift: 6.0 * args.fiber.alpha_deg.abs().to_radians(),
-        resolution: 1,
-    };
+    let rule =
+        cuticle_fiber::furnace::FurnaceRule::for_fiber(args.fiber.beta, args.fiber.alpha_deg);
     let start = Instant::now();
-    let lobes = evaluate(model.as_ref(), args.theta_i, grid, rule);
+    let lobes = lobe_images(model.as_ref(), args.theta_i, grid, rule);
     let eval_seconds = start.elapsed().as_secs_f64();
-    let total = sum(&lobes);
+    let total = total(&lobes);
     let mut named: Vec<(&str, &LatLongImage)> =
         LOBE_FILES.iter().copied().zip(lobes.iter()).collect();
     named.push(("total", &total));
@@ -144,34 +130,6 @@ fn energy_json(per_lobe: impl Fn(Lobe) -> f64, total: f64) -> serde_json::Value 
 pub const IMAGE_ENERGY_TOLERANCE: f64 = 2e-3;
 /// See [`IMAGE_ENERGY_TOLERANCE`].
 pub const IMAGE_ENERGY_ESTIMATES: f64 = 4.0;
-
-/// Points in φ per column: columns are π/200 wide at the default width, and S varies slowly in
-/// φ on that scale.
-const PHI_NODES: usize = 3;
-
-/// Each lobe's pixel means: on `rule`'s θ panels at the resolution the furnace reports.
-pub fn evaluate(
-    model: &dyn FiberModel,
-    theta_i: f64,
-    grid: LatLongGrid,
-    rule: cuticle_fiber::furnace::FurnaceRule,
-) -> [LatLongImage; 5] {
-    let breaks = cuticle_fiber::furnace::theta_breaks(theta_i, rule, 2 * rule.resolution.max(1));
-    cuticle_validate::pixel_integral::integrate_lobes_on_breaks(
-        model,
-        theta_i,
-        grid,
-        &breaks,
-        cuticle_fiber::furnace::NODES_PER_PANEL,
-        PHI_NODES,
-    )
-}
-
-fn sum(images: &[LatLongImage; 5]) -> LatLongImage {
-    let mut total = LatLongImage::zeros(images[0].grid);
-    images.iter().for_each(|img| total.add(img));
-    total
-}
 
 /// The histogram of importance samples, in the units of S: Σ weight / (N · pixel solid angle).
 pub struct SampleHistogram {

@@ -12,7 +12,7 @@ use cuticle_fiber::ranges::CountRange;
 use cuticle_gpu::{Backend, Choice};
 use cuticle_light::{SrbfLight, ToneMap};
 use cuticle_render::bench::{BenchReport, Edit};
-use cuticle_render::scene::memory::Advice;
+use cuticle_render::scene::overrides::SceneOverrides;
 use cuticle_render::{Image, Method, Renderer, Scene, SceneSpec, Timings};
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -289,45 +289,18 @@ const FRAMES: CountRange = CountRange {
     max: 1000,
 };
 
-/// The scene, loaded once what it needs in memory is known to fit (checked before the groom
-/// is made, and again before drawing, with the groom's real size).
-/// The path tracer's scene has no SRBF lights (it samples the map itself).
+/// The scene, loaded once what it needs in memory is known to fit
+/// ([`cuticle_render::scene::headroom::load_within_memory`]).
 pub fn load_within_memory(spec: SceneSpec, lights: Option<Vec<SrbfLight>>) -> Result<Scene> {
-    let threads = rayon::current_num_threads();
-    spec.validate()?;
-    let available = crate::memory::available();
-    let path = spec.method == Method::Path;
-    let light_count = if path {
-        Some(0)
-    } else {
-        lights.as_ref().map(Vec::len)
-    };
-    let advice = if path { Advice::PATH } else { Advice::RENDER };
-    spec.memory_need(light_count, threads)
-        .check_for(available, advice)?;
-    let scene = if path {
-        Scene::load_without_lights(spec)?
-    } else {
-        Scene::load(spec, lights)?
-    };
-    scene.memory_need(threads).check_for(available, advice)?;
-    Ok(scene)
+    Ok(cuticle_render::scene::headroom::load_within_memory(
+        spec, lights,
+    )?)
 }
 
-/// Refuses to write an image holding a pixel that is NaN or infinite as the f32 the files
-/// store (a finite f64 above 3.4e38 is +∞ there: issue 57 #5, an environment of 3e38 through a
-/// clear fiber). `what` names the image in the message.
+/// Refuses to write an image holding a pixel that is not a finite 32-bit float
+/// ([`Image::check_finite`]); `what` names the image in the message.
 pub(crate) fn check_finite(image: &Image, what: &str) -> Result<()> {
-    match image.pixels.iter().position(|p| !p.as_vec3().is_finite()) {
-        Some(k) => anyhow::bail!(
-            "the renderer made {what} pixel ({}, {}) = {} that is not a finite 32-bit float \
-             (the light is too bright?); nothing was written",
-            k % image.width,
-            k / image.width,
-            image.pixels[k]
-        ),
-        None => Ok(()),
-    }
+    Ok(image.check_finite(what)?)
 }
 
 /// bench.json: the scene's parameters and the median seconds.
@@ -414,54 +387,45 @@ pub fn rerender_summary(frame: f64, t: &Timings) -> String {
     )
 }
 
-/// The scene file (if any) with the flags laid over it, and lights read from a file.
+/// The scene file (if any) with the flags laid over it ([`SceneOverrides`]), and lights read
+/// from a file.
 pub fn spec_from(args: &SceneArgs) -> Result<(SceneSpec, Option<Vec<SrbfLight>>)> {
-    let mut spec = match &args.scene {
+    let spec = match &args.scene {
         Some(path) => SceneSpec::from_toml_file(path)?,
         None => SceneSpec::default(),
     };
-    let set = |field: &mut usize, v: Option<usize>| v.into_iter().for_each(|v| *field = v);
-    set(&mut spec.strands, args.strands);
-    set(&mut spec.width, args.width);
-    set(&mut spec.height, args.height);
-    set(&mut spec.quadrature, args.quadrature);
-    set(&mut spec.supersampling, args.supersampling);
-    set(&mut spec.brute_grid, args.brute_grid);
-    if let Some(g) = &args.groom {
-        spec.groom = g.clone();
-    }
-    if let Some(e) = &args.env {
-        spec.env = e.clone();
-    }
-    if let Some(m) = &args.method {
-        spec.method = match m.as_str() {
-            "brute" => Method::Brute,
-            "path" => Method::Path,
-            _ => Method::Srbf,
-        };
-    }
-    spec.multiple = spec.multiple && !args.no_multiple;
-    let h = &mut spec.hair;
-    let setf = |field: &mut f64, v: Option<f64>| v.into_iter().for_each(|v| *field = v);
-    setf(&mut h.eta, args.eta);
-    setf(&mut h.alpha_r_deg, args.alpha_r_deg);
-    setf(&mut h.beta_r_deg, args.beta_r_deg);
-    setf(&mut h.eccentricity, args.eccentricity);
-    setf(&mut h.caustic_width_deg, args.caustic_width_deg);
-    if let Some(m) = &args.mu_a {
-        h.mu_a = Some(parse_rgb(m)?);
-    }
-    let lights = match &args.lights {
-        None => None,
+    let (lights, light_file) = match &args.lights {
+        None => (None, None),
         Some(s) => match s.parse::<usize>() {
-            Ok(n) => {
-                spec.lights = n;
-                None
-            }
-            Err(_) => Some(read_lights(Path::new(s))?),
+            Ok(n) => (Some(n), None),
+            Err(_) => (None, Some(read_lights(Path::new(s))?)),
         },
     };
-    Ok((spec, lights))
+    let overrides = SceneOverrides {
+        groom: args.groom.clone(),
+        strands: args.strands,
+        env: args.env.clone(),
+        lights,
+        method: args
+            .method
+            .as_deref()
+            .map(str::parse)
+            .transpose()
+            .map_err(anyhow::Error::msg)?,
+        quadrature: args.quadrature,
+        multiple: args.no_multiple.then_some(false),
+        width: args.width,
+        height: args.height,
+        supersampling: args.supersampling,
+        brute_grid: args.brute_grid,
+        eta: args.eta,
+        alpha_r_deg: args.alpha_r_deg,
+        beta_r_deg: args.beta_r_deg,
+        mu_a: args.mu_a.as_deref().map(parse_rgb).transpose()?,
+        eccentricity: args.eccentricity,
+        caustic_width_deg: args.caustic_width_deg,
+    };
+    Ok((overrides.apply(spec), light_file))
 }
 
 fn parse_rgb(s: &str) -> Result<[f64; 3]> {

@@ -12,25 +12,25 @@ use std::path::{Path, PathBuf};
 #[derive(clap::Args)]
 pub struct Args {
     /// Incident inclination θ_i, radians.
-    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = SimParams::default().theta_i, allow_negative_numbers = true)]
     theta_i: f64,
     /// Scale tilt α, degrees (positive tilts the surface normal toward +u, the fiber tangent).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = SimParams::default().alpha.to_degrees(), allow_negative_numbers = true)]
     alpha_deg: f64,
     /// Beckmann roughness β > 0.
-    #[arg(long, default_value_t = 0.04, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = SimParams::default().beta, allow_negative_numbers = true)]
     beta: f64,
     /// Relative index of refraction η > 1.
-    #[arg(long, default_value_t = 1.55, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = SimParams::default().eta, allow_negative_numbers = true)]
     eta: f64,
     /// Interior absorption per unit radius: one value or r,g,b.
     #[arg(long, default_value = "0", value_parser = parse_mu_a, allow_negative_numbers = true)]
     mu_a: [f64; 3],
     /// Paths to trace.
-    #[arg(long, default_value_t = 10_000_000)]
+    #[arg(long, default_value_t = SimParams::default().rays)]
     rays: u64,
     /// Random seed; a seed gives the same images on any number of threads.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = SimParams::default().seed)]
     seed: u64,
     /// Output folder.
     #[arg(long)]

@@ -7,12 +7,13 @@
 //! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
 //! Chiang 2016) for every strand.
 
-use crate::commands::fiber_args::{absorption, model_parser};
+use crate::commands::fiber_args::model_parser;
 use crate::commands::render::check_finite;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
 use cuticle_fiber::ranges::{BETA, CountRange};
+use cuticle_fiber::spec::absorption;
 use cuticle_fiber::{BuildOptions, FiberModel, FiberParams, ModelId};
 use cuticle_light::ToneMap;
 use cuticle_render::{Image, Scene, SceneSpec};

@@ -40,7 +40,7 @@ pub fn run(args: Args) -> Result<()> {
     AFTER_FRAMES.check_usize(args.after_frames)?;
     // The window's first frame needs what `render`'s does: refused before the window opens.
     spec.memory_need(lights.as_ref().map(Vec::len), rayon::current_num_threads())
-        .check(crate::memory::available())?;
+        .check(cuticle_render::scene::headroom::available())?;
     if spec.method == cuticle_render::Method::Path {
         anyhow::bail!(
             "the window shades with srbf or brute; --method path is for `cuticle render`"

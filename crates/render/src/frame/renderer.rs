@@ -43,6 +43,24 @@ pub struct Image {
     pub pixels: Vec<DVec3>,
 }
 
+impl Image {
+    /// Refuses an image holding a pixel that is NaN or infinite as the f32 the files store (a
+    /// finite f64 above 3.4e38 is +∞ there: issue 57 #5, an environment of 3e38 through a
+    /// clear fiber). `what` names the image in the message.
+    pub fn check_finite(&self, what: &str) -> Result<(), crate::SceneError> {
+        match self.pixels.iter().position(|p| !p.as_vec3().is_finite()) {
+            Some(k) => Err(crate::SceneError::Invalid(format!(
+                "the renderer made {what} pixel ({}, {}) = {} that is not a finite 32-bit \
+                 float (the light is too bright?); nothing was written",
+                k % self.width,
+                k / self.width,
+                self.pixels[k]
+            ))),
+            None => Ok(()),
+        }
+    }
+}
+
 /// Wall seconds of each stage.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Timings {

@@ -6,7 +6,9 @@
 
 pub mod camera;
 pub mod hair;
+pub mod headroom;
 pub mod memory;
+pub mod overrides;
 pub mod resample;
 
 use crate::frame::shadows::ShadowOptions;

@@ -2,10 +2,13 @@
 //! available, the cgroup's limit less its use (v2, else v1), and the process's own address-space
 //! limit (`RLIMIT_AS`, as `ulimit -v` or `prlimit --as` set it) less the address space it
 //! already maps (issue 57 #14: under `prlimit --as=4294967296` a groom of 10 GB aborted in the
-//! allocator). Commands compare it with what their work needs (`cuticle_render::scene::memory`)
-//! before allocating, and refuse with a sentence rather than be killed half way.
+//! allocator). Commands (and the Python bindings) compare it with what their work needs
+//! ([`crate::scene::memory`]) before allocating, and refuse with a sentence rather than be killed half way.
 //! `CUTICLE_MEMORY_LIMIT` (bytes) caps it further.
 
+use crate::scene::memory::Advice;
+use crate::scene::{Method, Scene, SceneError, SceneSpec};
+use cuticle_light::SrbfLight;
 use std::fs;
 
 /// Caps what [`available`] reports, in bytes: to share a machine, and for tests that must
@@ -43,6 +46,34 @@ fn address_space_headroom() -> Option<u64> {
 #[cfg(not(target_os = "linux"))]
 fn address_space_headroom() -> Option<u64> {
     None
+}
+
+/// The scene, loaded once what it needs in memory is known to fit in [`available`] (checked
+/// before the groom is made, and again before drawing, with the groom's real size).
+/// The path tracer's scene has no SRBF lights (it samples the map itself).
+pub fn load_within_memory(
+    spec: SceneSpec,
+    lights: Option<Vec<SrbfLight>>,
+) -> Result<Scene, SceneError> {
+    let threads = rayon::current_num_threads();
+    spec.validate()?;
+    let available = available();
+    let path = spec.method == Method::Path;
+    let light_count = if path {
+        Some(0)
+    } else {
+        lights.as_ref().map(Vec::len)
+    };
+    let advice = if path { Advice::PATH } else { Advice::RENDER };
+    spec.memory_need(light_count, threads)
+        .check_for(available, advice)?;
+    let scene = if path {
+        Scene::load_without_lights(spec)?
+    } else {
+        Scene::load(spec, lights)?
+    };
+    scene.memory_need(threads).check_for(available, advice)?;
+    Ok(scene)
 }
 
 /// `MemAvailable` of /proc/meminfo.
