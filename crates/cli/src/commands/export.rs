@@ -3,8 +3,8 @@
 //! cuticle-export, as one set with `export.json` (the scene's parameters, the hair's, and what
 //! was written).
 
+use crate::commands::render::path::PathArgs;
 use crate::commands::render::{SceneArgs, spec_from};
-use crate::commands::trace::PathArgs;
 use crate::output::OutDir;
 use anyhow::{Result, bail};
 use cuticle_export::{Absorption, ChiangHair, Format, HairLook, RenderSettings};
@@ -55,7 +55,7 @@ pub fn run(args: Args) -> Result<()> {
     let options = args.path.options()?;
     args.path.check(&spec)?;
     let (fiber, beta_n) = args.path.chiang(&spec)?;
-    let scene = crate::commands::trace::load(spec)?;
+    let scene = crate::commands::render::path::load(spec)?;
     let look = HairLook {
         fiber: ChiangHair {
             beta_m: fiber.beta,

@@ -1,5 +1,4 @@
 pub mod compare;
-pub mod device;
 pub mod env;
 pub mod export;
 pub mod fiber_args;
@@ -10,6 +9,5 @@ pub mod render;
 pub mod sim;
 pub mod sweep;
 pub mod sweep_folder;
-pub mod trace;
 pub mod validate;
 pub mod view;

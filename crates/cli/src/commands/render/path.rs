@@ -7,8 +7,8 @@
 //! (`--beta`, `--alpha-deg`, `--mu-a` or melanin; η from the scene; `--beta-m`, `--beta-n` for
 //! Chiang 2016) for every strand.
 
+use super::record::check_finite;
 use crate::commands::fiber_args::model_parser;
-use crate::commands::render::check_finite;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
@@ -246,7 +246,7 @@ impl PathArgs {
 /// it needs in memory is known to fit.
 pub(crate) fn load(mut spec: SceneSpec) -> Result<Scene> {
     spec.method = cuticle_render::Method::Path;
-    crate::commands::render::load_within_memory(spec, None)
+    super::scene_args::load_within_memory(spec, None)
 }
 
 /// Samples per pixel of one path-traced image.
