@@ -59,64 +59,6 @@ impl Default for HairParams {
     }
 }
 
-/// The values a hair parameter may take: (min, max], or [min, max] when `min_closed`. The
-/// one statement of each range, which validation checks and the window's sliders span.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ParamRange {
-    pub min: f64,
-    pub max: f64,
-    pub min_closed: bool,
-}
-
-impl ParamRange {
-    const fn closed(min: f64, max: f64) -> Self {
-        Self {
-            min,
-            max,
-            min_closed: true,
-        }
-    }
-
-    const fn open_below(min: f64, max: f64) -> Self {
-        Self {
-            min,
-            max,
-            min_closed: false,
-        }
-    }
-
-    /// Whether `value` is finite and inside.
-    pub fn contains(&self, value: f64) -> bool {
-        value.is_finite()
-            && value <= self.max
-            && (value > self.min || (self.min_closed && value == self.min))
-    }
-}
-
-impl std::fmt::Display for ParamRange {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let open = if self.min_closed { '[' } else { '(' };
-        write!(f, "{open}{}, {}]", self.min, self.max)
-    }
-}
-
-/// The window's sliders span these; each is the range [`HairParams::validate`] checks
-/// ([`cuticle_fiber::ranges`]), written in this form (open ends taken just inside).
-impl HairParams {
-    pub const ETA: ParamRange = ParamRange::open_below(1.0, 10.0);
-    pub const ALPHA_R_DEG: ParamRange = ParamRange::closed(-20.0, 20.0);
-    pub const BETA_R_DEG: ParamRange = ParamRange::closed(0.004, 60.0);
-    /// Each channel of μ_a (per unit radius).
-    pub const MU_A: ParamRange = ParamRange::closed(0.0, 1000.0);
-    /// The open (1/√2, √2) of `ranges::ECCENTRICITY` as closed ends just inside it (0.70711 >
-    /// 1/√2, 1.41421 < √2), not the constants themselves, which the range refuses.
-    #[allow(clippy::approx_constant)]
-    pub const ECCENTRICITY: ParamRange = ParamRange::closed(0.70711, 1.41421);
-    pub const CAUSTIC_WIDTH_DEG: ParamRange = ParamRange::closed(0.01, 90.0);
-    pub const CAUSTIC_FADE: ParamRange = ParamRange::open_below(0.0, 2.0);
-    pub const D_B: ParamRange = ParamRange::closed(0.0, 1.0);
-}
-
 /// d_b, the weight of local backward multiple scattering (Xu et al. 2011 eq. 4).
 pub const D_B: Range = Range {
     name: "d_b",

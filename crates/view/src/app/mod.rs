@@ -537,7 +537,7 @@ impl ViewApp {
             return 0;
         };
         let to = cuticle_render::scene::hair::mu_a_of(target);
-        let range = cuticle_render::HairParams::MU_A;
+        let range = cuticle_fiber::ranges::MU_A;
         if !to.to_array().iter().all(|&c| range.contains(c)) {
             self.error(format!("the brush's μ_a {to} is outside {range}"));
             return 0;

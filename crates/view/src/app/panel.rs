@@ -1,34 +1,38 @@
 //! The controls, each live, each with its unit; the slider of every hair parameter spans the
-//! range the render crate validates ([`HairParams`]'s constants), nothing restated here.
+//! range the scene validates (the fiber's `cuticle_fiber::ranges`, the scene's
+//! `cuticle_render::scene`), nothing restated here.
 
 use crate::app::{AbsorptionEdit, Tool, ViewApp};
 use crate::presets::PRESETS;
+use cuticle_fiber::ranges;
 use cuticle_fiber::ranges::{CountRange, End, Range};
+use cuticle_render::Method;
 use cuticle_render::scene;
-use cuticle_render::scene::hair::ParamRange;
-use cuticle_render::{HairParams, Method};
 use egui::{Slider, Ui};
 use std::sync::Arc;
 
-/// The slider span of a range: an open lower end starts a thousandth of the span inside.
-fn span(r: ParamRange) -> std::ops::RangeInclusive<f64> {
-    let lo = if r.min_closed {
-        r.min
-    } else {
-        r.min + (r.max - r.min) * 1e-3
+/// The slider span of a range: an open end lies a thousandth of the span inside.
+fn span(r: Range) -> std::ops::RangeInclusive<f64> {
+    let (lo, hi) = r.bounds();
+    let inside = (hi - lo) * 1e-3;
+    let lo = match r.min {
+        End::Closed(v) => v,
+        End::Open(v) => v + inside,
     };
-    lo..=r.max
+    let hi = match r.max {
+        End::Closed(v) => v,
+        End::Open(v) => v - inside,
+    };
+    lo..=hi
 }
 
 /// A slider over a validated range, its label, unit and range in the tooltip.
-fn param(ui: &mut Ui, value: &mut f64, r: ParamRange, label: &str, unit: &str, what: &str) -> bool {
+fn param(ui: &mut Ui, value: &mut f64, r: Range, label: &str, unit: &str, what: &str) -> bool {
     let mut s = Slider::new(value, span(r)).text(label);
     if !unit.is_empty() {
         s = s.suffix(format!(" {unit}"));
     }
-    ui.add(s)
-        .on_hover_text(format!("{what}; {r} {unit}"))
-        .changed()
+    ui.add(s).on_hover_text(format!("{what}; {r}")).changed()
 }
 
 /// A logarithmic slider over a validated scene count, its unit and range in the tooltip.
@@ -84,18 +88,11 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
     egui::CollapsingHeader::new("Fiber")
         .default_open(true)
         .show(ui, |ui| {
-            param(
-                ui,
-                &mut h.eta,
-                HairParams::ETA,
-                "η",
-                "",
-                "index of refraction",
-            );
+            param(ui, &mut h.eta, ranges::ETA, "η", "", "index of refraction");
             param(
                 ui,
                 &mut h.alpha_r_deg,
-                HairParams::ALPHA_R_DEG,
+                ranges::ALPHA_R_DEG,
                 "α_R",
                 "°",
                 "longitudinal shift of R (TT −α/2, TRT −3α/2)",
@@ -103,7 +100,7 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
             param(
                 ui,
                 &mut h.beta_r_deg,
-                HairParams::BETA_R_DEG,
+                ranges::BETA_R_DEG,
                 "β_R",
                 "°",
                 "longitudinal width of R (TT β/2, TRT 2β)",
@@ -111,7 +108,7 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
             param(
                 ui,
                 &mut h.caustic_width_deg,
-                HairParams::CAUSTIC_WIDTH_DEG,
+                ranges::CAUSTIC_WIDTH_DEG,
                 "w_c",
                 "°",
                 "azimuthal width of the TRT glints",
@@ -119,7 +116,7 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
             param(
                 ui,
                 &mut h.caustic_fade,
-                HairParams::CAUSTIC_FADE,
+                ranges::CAUSTIC_FADE,
                 "caustic fade Δη'",
                 "",
                 "over which the glints fade once they merge",
@@ -127,7 +124,7 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
             param(
                 ui,
                 &mut h.eccentricity,
-                HairParams::ECCENTRICITY,
+                ranges::ECCENTRICITY,
                 "eccentricity a",
                 "",
                 "cross-section eccentricity (Xu et al. 2011 eq. 24)",
@@ -135,7 +132,7 @@ fn hair(app: &mut ViewApp, ui: &mut Ui) {
             param(
                 ui,
                 &mut h.d_b,
-                HairParams::D_B,
+                scene::hair::D_B,
                 "d_b",
                 "",
                 "weight of local back scattering (Xu et al. 2011 eq. 4)",
@@ -206,7 +203,7 @@ fn absorption_editor(
                 .add(egui::TextEdit::singleline(text).hint_text("r, g, b"))
                 .on_hover_text(format!(
                     "μ_a per unit radius, one value or r, g, b, each in {}",
-                    HairParams::MU_A
+                    ranges::MU_A
                 ));
             if r.lost_focus() || (r.changed() && ui.input(|i| i.key_pressed(egui::Key::Enter))) {
                 match parse_rgb(text) {
@@ -221,7 +218,8 @@ fn absorption_editor(
         }
         AbsorptionEdit::Melanin(m) => {
             // The largest concentration whose μ_a stays inside the validated range.
-            let max = HairParams::MU_A.max / cuticle_fiber::optics::absorption::EUMELANIN_SIGMA_A.z;
+            let max =
+                ranges::MU_A.bounds().1 / cuticle_fiber::optics::absorption::EUMELANIN_SIGMA_A.z;
             let r = 0.0..=max;
             changed |= ui
                 .add(
@@ -378,7 +376,7 @@ fn lighting(app: &mut ViewApp, ui: &mut Ui) {
                 let before = look.spec.env_rotate_deg;
                 let r = ui
                     .add(
-                        Slider::new(&mut look.spec.env_rotate_deg, -180.0..=180.0)
+                        Slider::new(&mut look.spec.env_rotate_deg, span(scene::ENV_ROTATE_DEG))
                             .text("rotation")
                             .suffix(" °"),
                     )
@@ -460,7 +458,7 @@ fn groom(app: &mut ViewApp, ui: &mut Ui) {
             });
             ui.add(
                 egui::DragValue::new(&mut app.controls.strands)
-                    .range(1..=200_000)
+                    .range(scene::STRANDS.min as usize..=scene::STRANDS.max as usize)
                     .prefix("strands of a preset: "),
             );
         });
