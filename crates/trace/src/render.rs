@@ -7,6 +7,7 @@ use crate::accel::Accel;
 use crate::env_sampling::EnvSampler;
 use crate::models::StrandModels;
 use crate::path::{PathOptions, World};
+use cuticle_fiber::ranges::CountRange;
 use cuticle_render::{Image, Progress, Scene};
 use glam::DVec3;
 use rand_core::SeedableRng;
@@ -14,6 +15,20 @@ use rand_pcg::Pcg64Mcg;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
+
+/// Samples per pixel of one path-traced image ([`TraceOptions::spp`]).
+pub const SPP: CountRange = CountRange {
+    name: "spp",
+    min: 1,
+    max: 1 << 20,
+};
+
+/// Most scattering events of one path ([`PathOptions::max_depth`]).
+pub const MAX_DEPTH: CountRange = CountRange {
+    name: "max_depth",
+    min: 1,
+    max: 100_000,
+};
 
 /// What a render is asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

@@ -12,12 +12,14 @@ use crate::commands::fiber_args::model_parser;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
-use cuticle_fiber::ranges::{BETA, CountRange};
+use cuticle_fiber::ranges::BETA;
 use cuticle_fiber::spec::absorption;
 use cuticle_fiber::{BuildOptions, FiberModel, FiberParams, ModelId};
 use cuticle_light::ToneMap;
 use cuticle_render::{Image, Scene, SceneSpec};
-use cuticle_trace::{Accel, PathOptions, StrandModels, Strategy, TraceImage, TraceOptions};
+use cuticle_trace::{
+    Accel, MAX_DEPTH, PathOptions, SPP, StrandModels, Strategy, TraceImage, TraceOptions,
+};
 use glam::DVec3;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -248,20 +250,6 @@ pub(crate) fn load(mut spec: SceneSpec) -> Result<Scene> {
     spec.method = cuticle_render::Method::Path;
     super::scene_args::load_within_memory(spec, None)
 }
-
-/// Samples per pixel of one path-traced image.
-pub const SPP: CountRange = CountRange {
-    name: "spp",
-    min: 1,
-    max: 1 << 20,
-};
-
-/// Most scattering events of one path.
-pub const MAX_DEPTH: CountRange = CountRange {
-    name: "max_depth",
-    min: 1,
-    max: 100_000,
-};
 
 /// `cuticle render --method path`.
 pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
