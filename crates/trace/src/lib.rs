@@ -26,7 +26,7 @@ pub mod tubes;
 pub use accel::Accel;
 pub use models::StrandModels;
 pub use path::{PathOptions, Strategy};
-pub use render::{TraceImage, TraceOptions, TraceStats, render, render_with};
+pub use render::{MAX_DEPTH, SPP, TraceImage, TraceOptions, TraceStats, render, render_with};
 
 #[doc(no_inline)]
 pub use cuticle_render::Scene;

@@ -12,12 +12,14 @@ use crate::commands::render::check_finite;
 use crate::output::OutDir;
 use crate::progress::bar;
 use anyhow::{Context, Result, bail};
-use cuticle_fiber::ranges::{BETA, CountRange};
+use cuticle_fiber::ranges::BETA;
 use cuticle_fiber::spec::absorption;
 use cuticle_fiber::{BuildOptions, FiberModel, FiberParams, ModelId};
 use cuticle_light::ToneMap;
 use cuticle_render::{Image, Scene, SceneSpec};
-use cuticle_trace::{Accel, PathOptions, StrandModels, Strategy, TraceImage, TraceOptions};
+use cuticle_trace::{
+    Accel, MAX_DEPTH, PathOptions, SPP, StrandModels, Strategy, TraceImage, TraceOptions,
+};
 use glam::DVec3;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -27,13 +29,13 @@ use std::time::Instant;
 #[derive(clap::Args, Clone, Debug)]
 pub struct PathArgs {
     /// Samples per pixel (--method path).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = TraceOptions::default().spp)]
     pub spp: u32,
     /// Seed of the path tracer's random numbers.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = TraceOptions::default().seed)]
     pub seed: u64,
     /// Most scattering events of a path.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = TraceOptions::default().path.max_depth)]
     pub max_depth: u32,
     /// Fiber model of the path tracer; marschner takes the scene's hair parameters.
     #[arg(long, value_parser = model_parser(), default_value = "marschner")]
@@ -124,16 +126,11 @@ impl PathArgs {
     }
 
     fn options(&self) -> Result<TraceOptions> {
-        SPP.check(self.spp.into())?;
-        MAX_DEPTH.check(self.max_depth.into())?;
-        Ok(TraceOptions {
-            spp: self.spp,
-            seed: self.seed,
-            path: PathOptions {
-                max_depth: self.max_depth,
-                ..PathOptions::default()
-            },
-        })
+        Ok(TraceOptions::checked(
+            self.spp.into(),
+            self.seed,
+            self.max_depth.into(),
+        )?)
     }
 
     /// The fiber parameters of the non-Marschner models: η from the scene, absorption from
@@ -240,20 +237,6 @@ fn load(mut spec: SceneSpec) -> Result<Scene> {
     spec.method = cuticle_render::Method::Path;
     crate::commands::render::load_within_memory(spec, None)
 }
-
-/// Samples per pixel of one path-traced image.
-pub const SPP: CountRange = CountRange {
-    name: "spp",
-    min: 1,
-    max: 1 << 20,
-};
-
-/// Most scattering events of one path.
-pub const MAX_DEPTH: CountRange = CountRange {
-    name: "max_depth",
-    min: 1,
-    max: 100_000,
-};
 
 /// `cuticle render --method path`.
 pub fn run(args: &PathArgs, spec: SceneSpec, out: &Path) -> Result<()> {
@@ -376,7 +359,7 @@ pub struct TraceBenchArgs {
     /// Samples per pixel of the path-traced part.
     #[arg(long, default_value_t = 4)]
     pub spp: u32,
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = TraceOptions::default().path.max_depth)]
     pub max_depth: u32,
     /// Output folder.
     #[arg(long, default_value = "out/bench-trace")]
