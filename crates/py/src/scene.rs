@@ -3,7 +3,7 @@
 //! [`SceneOverrides`] over its defaults or a TOML file, loaded within the memory available,
 //! rendered on the CPU), so a render gives the command's pixels.
 
-use crate::arrays::rgb_image_f32;
+use crate::arrays::{f32_channels, rgb_image};
 use crate::errors::{error_line, value_error};
 use crate::rgb::rgb_argument;
 use cuticle_fiber::ranges::CountRange;
@@ -129,7 +129,13 @@ pub fn render<'py>(
     };
     let image = py.detach(|| render_scene(scene.as_deref(), &overrides, &path));
     let image = image.map_err(value_error)?;
-    Ok(rgb_image_f32(py, image.width, image.height, &image.pixels))
+    Ok(rgb_image(
+        py,
+        image.width,
+        image.height,
+        &image.pixels,
+        f32_channels,
+    ))
 }
 
 /// The path tracer's arguments of [`render`], checked once the method is known.
