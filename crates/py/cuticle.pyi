@@ -96,6 +96,9 @@ def render(
     quadrature: Optional[int] = None,
     multiple: Optional[bool] = None,
     brute_grid: Optional[int] = None,
+    spp: Optional[int] = None,
+    seed: Optional[int] = None,
+    max_depth: Optional[int] = None,
     eta: Optional[float] = None,
     alpha_r_deg: Optional[float] = None,
     beta_r_deg: Optional[float] = None,
@@ -104,7 +107,7 @@ def render(
     caustic_width_deg: Optional[float] = None,
     scene: Optional[Union[str, PathLike]] = None,
 ) -> F32:
-    """`cuticle render --device cpu` (methods srbf and brute): linear radiance (H, W, 3)."""
+    """`cuticle render --device cpu` (methods srbf, brute, path): linear radiance (H, W, 3)."""
 
 def load_groom(groom: str, strands: Optional[int] = None) -> dict:
     """A preset or .hair file: "strands", "points" (P, 3), "offsets" (strands + 1,), "thickness"."""

@@ -108,7 +108,10 @@ fn the_step_outside_is_small_against_every_span() {
         let (lo, hi) = range.bounds();
         for v in just_outside(&range) {
             let gap = (v - lo).abs().min((v - hi).abs());
-            assert!(gap <= 1e-6 * (hi - lo).max(1.0) * 1e3, "{flag}: {v} in {range}");
+            assert!(
+                gap <= 1e-6 * (hi - lo).max(1.0) * 1e3,
+                "{flag}: {v} in {range}"
+            );
             assert!(!range.contains(v), "{flag}: {v} is inside {range}");
         }
     }

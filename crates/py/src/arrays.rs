@@ -8,7 +8,9 @@ use crate::errors::value_error;
 use cuticle_fiber::FiberAngles;
 use glam::DVec3;
 use numpy::ndarray::{Array, Ix2, Ix3};
-use numpy::{AllowTypeChange, IntoPyArray, PyArray, PyArrayLikeDyn, PyUntypedArrayMethods};
+use numpy::{
+    AllowTypeChange, Element, IntoPyArray, PyArray, PyArrayLikeDyn, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use rayon::prelude::*;
 
@@ -163,31 +165,30 @@ pub fn matrix(py: Python<'_>, values: Vec<f64>, columns: usize) -> Bound<'_, PyA
         .into_pyarray(py)
 }
 
-/// RGB pixels, row-major, as a float64 array of shape (height, width, 3).
-pub fn rgb_image<'py>(
+/// RGB pixels, row-major, as an array of shape (height, width, 3) of what `channels` makes
+/// of each: float64 ([`f64_channels`]) or float32 as the command line's EXRs store them
+/// ([`f32_channels`]).
+pub fn rgb_image<'py, T: Element>(
     py: Python<'py>,
     width: usize,
     height: usize,
     pixels: &[DVec3],
-) -> Bound<'py, PyArray<f64, Ix3>> {
-    let flat: Vec<f64> = pixels.iter().flat_map(|p| p.to_array()).collect();
+    channels: fn(&DVec3) -> [T; 3],
+) -> Bound<'py, PyArray<T, Ix3>> {
+    let flat: Vec<T> = pixels.iter().flat_map(channels).collect();
     Array::from_shape_vec((height, width, 3), flat)
         .expect("width × height pixels")
         .into_pyarray(py)
 }
 
-/// RGB pixels, row-major, rounded to float32 as the command line's EXRs store them, as an
-/// array of shape (height, width, 3).
-pub fn rgb_image_f32<'py>(
-    py: Python<'py>,
-    width: usize,
-    height: usize,
-    pixels: &[DVec3],
-) -> Bound<'py, PyArray<f32, Ix3>> {
-    let flat: Vec<f32> = pixels.iter().flat_map(|p| p.as_vec3().to_array()).collect();
-    Array::from_shape_vec((height, width, 3), flat)
-        .expect("width × height pixels")
-        .into_pyarray(py)
+/// A pixel's channels as float64.
+pub fn f64_channels(p: &DVec3) -> [f64; 3] {
+    p.to_array()
+}
+
+/// A pixel's channels rounded to float32, as the command line's EXRs store them.
+pub fn f32_channels(p: &DVec3) -> [f32; 3] {
+    p.as_vec3().to_array()
 }
 
 /// A shape as Python prints it: `(3, 2)`, `(4,)`.

@@ -3,7 +3,9 @@
 //! lat-long images on NumPy arrays. Each call copies its arrays, releases the GIL and works
 //! on rayon's pool (all cores).
 
-use crate::arrays::{Directions, Floats, broadcast, matrix, par_rows, rgb_image, uniforms};
+use crate::arrays::{
+    Directions, Floats, broadcast, f64_channels, matrix, par_rows, rgb_image, uniforms,
+};
 use crate::errors::value_error;
 use crate::rgb::rgb_argument;
 use cuticle_fiber::furnace::{self, FurnaceRule};
@@ -277,12 +279,15 @@ impl Fiber {
         for (lobe, image) in Lobe::ALL.into_iter().zip(&lobes) {
             dict.set_item(
                 lobe.name(),
-                rgb_image(py, grid.width, grid.height, &image.pixels),
+                rgb_image(py, grid.width, grid.height, &image.pixels, f64_channels),
             )?;
             energies.set_item(lobe.name(), rgb(py, energy.per_lobe[lobe]))?;
         }
         let sum = total(&lobes);
-        dict.set_item("total", rgb_image(py, grid.width, grid.height, &sum.pixels))?;
+        dict.set_item(
+            "total",
+            rgb_image(py, grid.width, grid.height, &sum.pixels, f64_channels),
+        )?;
         energies.set_item("total", rgb(py, energy.albedo))?;
         dict.set_item("energy", energies)?;
         dict.set_item("energy_error_estimate", rgb(py, energy.error_estimate))?;

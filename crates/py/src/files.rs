@@ -1,7 +1,7 @@
 //! Images on disk: `cuticle.read_exr` reads the EXRs the command line writes (lobe images,
 //! renders) through the reader the command line itself uses (`cuticle_light::image_file`).
 
-use crate::arrays::rgb_image_f32;
+use crate::arrays::{f32_channels, rgb_image};
 use crate::errors::value_error;
 use numpy::PyArray3;
 use pyo3::prelude::*;
@@ -15,5 +15,11 @@ pub fn read_exr(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyArray3<f3
     let image = py
         .detach(|| cuticle_light::image_file::read_rgb_exr(&path))
         .map_err(value_error)?;
-    Ok(rgb_image_f32(py, image.width, image.height, &image.pixels))
+    Ok(rgb_image(
+        py,
+        image.width,
+        image.height,
+        &image.pixels,
+        f32_channels,
+    ))
 }

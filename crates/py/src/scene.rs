@@ -3,7 +3,7 @@
 //! [`SceneOverrides`] over its defaults or a TOML file, loaded within the memory available,
 //! rendered on the CPU), so a render gives the command's pixels.
 
-use crate::arrays::rgb_image_f32;
+use crate::arrays::{f32_channels, rgb_image};
 use crate::errors::{error_line, value_error};
 use crate::rgb::rgb_argument;
 use cuticle_fiber::ranges::CountRange;
@@ -11,7 +11,8 @@ use cuticle_light::{FitOptions, fit_srbf, load_or_default};
 use cuticle_render::scene::headroom::load_within_memory;
 use cuticle_render::scene::overrides::SceneOverrides;
 use cuticle_render::scene::{Method, STRANDS, load_groom as load};
-use cuticle_render::{Renderer, SceneSpec};
+use cuticle_render::{Image, Renderer, SceneSpec};
+use cuticle_trace::{StrandModels, TraceOptions};
 use numpy::ndarray::Array;
 use numpy::{IntoPyArray, PyArray1, PyArray3};
 use pyo3::prelude::*;
@@ -49,12 +50,14 @@ fn size(name: &'static str, value: Option<i64>) -> PyResult<Option<usize>> {
 ///
 /// groom: a preset ("straight", "wavy", "curly") or a .hair file.
 /// env: "default" (the procedural sky), "constant:R,G,B", or an .hdr/.exr lat-long map.
-/// method: "srbf" (Xu et al. 2011) or "brute" (exact model, 6 n² directional lights);
-///     "path" (the path tracer) is `cuticle render --method path`, not offered here yet.
+/// method: "srbf" (Xu et al. 2011), "brute" (exact model, 6 n² directional lights) or
+///     "path" (the path tracer, with the scene's Marschner 2003 hair: `--model marschner`).
 /// width, height: the image in pixels; supersampling: subsamples per pixel along each axis.
 /// strands: strands of a preset groom; lights: the number J of SRBF lights to fit.
 /// quadrature: segments m of the linear quadrature; multiple: dual scattering on or off;
 /// brute_grid: n of the brute force's 6 n² lights.
+/// spp, seed, max_depth: the path tracer's samples per pixel (1..=1048576), seed and most
+///     scattering events of a path (1..=100000); method "path" only.
 /// eta, alpha_r_deg (degrees), beta_r_deg (degrees), mu_a (one number or (r, g, b), per
 ///     unit radius), eccentricity, caustic_width_deg (degrees): the hair (Marschner 2003).
 ///
@@ -64,8 +67,9 @@ fn size(name: &'static str, value: Option<i64>) -> PyResult<Option<usize>> {
 #[pyo3(signature = (
     *, groom = None, env = None, method = None, width = None, height = None,
     supersampling = None, strands = None, lights = None, quadrature = None, multiple = None,
-    brute_grid = None, eta = None, alpha_r_deg = None, beta_r_deg = None, mu_a = None,
-    eccentricity = None, caustic_width_deg = None, scene = None,
+    brute_grid = None, spp = None, seed = None, max_depth = None, eta = None,
+    alpha_r_deg = None, beta_r_deg = None, mu_a = None, eccentricity = None,
+    caustic_width_deg = None, scene = None,
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn render<'py>(
@@ -81,6 +85,9 @@ pub fn render<'py>(
     quadrature: Option<i64>,
     multiple: Option<bool>,
     brute_grid: Option<i64>,
+    spp: Option<i64>,
+    seed: Option<u64>,
+    max_depth: Option<i64>,
     eta: Option<f64>,
     alpha_r_deg: Option<f64>,
     beta_r_deg: Option<f64>,
@@ -93,12 +100,6 @@ pub fn render<'py>(
         .map(|m| m.parse::<Method>())
         .transpose()
         .map_err(value_error)?;
-    if method == Some(Method::Path) {
-        return Err(value_error(
-            "method path (the path tracer) is `cuticle render --method path`; from Python, \
-             render takes srbf or brute",
-        ));
-    }
     let overrides = SceneOverrides {
         groom,
         strands: size("strands", strands)?,
@@ -118,26 +119,72 @@ pub fn render<'py>(
         eccentricity,
         caustic_width_deg,
     };
-    let image = py.detach(|| -> Result<_, String> {
-        let spec = match &scene {
-            Some(path) => SceneSpec::from_toml_file(path).map_err(|e| error_line(&e))?,
-            None => SceneSpec::default(),
-        };
-        let spec = overrides.apply(spec);
-        if spec.method == Method::Path {
-            return Err(
-                "the scene's method is path (the path tracer), which render does not \
-                        offer from Python: give method=\"srbf\" or \"brute\""
-                    .into(),
-            );
+    let defaults = TraceOptions::default();
+    let path = PathRequest {
+        given: spp.is_some() || seed.is_some() || max_depth.is_some(),
+        spp: size("spp", spp)?.map_or(defaults.spp.into(), |n| n as u64),
+        seed: seed.unwrap_or(defaults.seed),
+        max_depth: size("max_depth", max_depth)?
+            .map_or(defaults.path.max_depth.into(), |n| n as u64),
+    };
+    let image = py.detach(|| render_scene(scene.as_deref(), &overrides, &path));
+    let image = image.map_err(value_error)?;
+    Ok(rgb_image(
+        py,
+        image.width,
+        image.height,
+        &image.pixels,
+        f32_channels,
+    ))
+}
+
+/// The path tracer's arguments of [`render`], checked once the method is known.
+struct PathRequest {
+    given: bool,
+    spp: u64,
+    seed: u64,
+    max_depth: u64,
+}
+
+/// The scene (a TOML file's or the defaults, `overrides` laid over it) rendered as
+/// `cuticle render --device cpu` renders it.
+fn render_scene(
+    file: Option<&std::path::Path>,
+    overrides: &SceneOverrides,
+    path: &PathRequest,
+) -> Result<Image, String> {
+    let spec = match file {
+        Some(f) => SceneSpec::from_toml_file(f).map_err(|e| error_line(&e))?,
+        None => SceneSpec::default(),
+    };
+    let spec = overrides.apply(spec);
+    if spec.method != Method::Path {
+        if path.given {
+            return Err("spp, seed and max_depth are for method path".into());
         }
         let scene = load_within_memory(spec, None).map_err(|e| error_line(&e))?;
         let (image, _, _) = renderer().render(&scene);
         image.check_finite("an image").map_err(|e| error_line(&e))?;
-        Ok(image)
-    });
-    let image = image.map_err(value_error)?;
-    Ok(rgb_image_f32(py, image.width, image.height, &image.pixels))
+        return Ok(image);
+    }
+    if !spec.multiple {
+        return Err(
+            "multiple = False is for methods srbf and brute; the path tracer's single \
+                    scattering is max_depth = 1"
+                .into(),
+        );
+    }
+    let options =
+        TraceOptions::checked(path.spp, path.seed, path.max_depth).map_err(|e| error_line(&e))?;
+    let scene = load_within_memory(spec, None).map_err(|e| error_line(&e))?;
+    let models = StrandModels::marschner(&scene)
+        .map_err(|e| format!("Marschner 2003 parameters: {}", error_line(&e)))?;
+    let traced = cuticle_trace::render(&scene, &models, &options, &|_, _| {});
+    traced
+        .image
+        .check_finite("an image")
+        .map_err(|e| error_line(&e))?;
+    Ok(traced.image)
 }
 
 /// A groom as the renderer loads it: a preset ("straight", "wavy", "curly", with `strands`

@@ -2,7 +2,7 @@
 //! through `cuticle_sim::simulate`, the function `cuticle sim` calls, on the same
 //! [`SimParams`] (defaults and ranges its own), so a seed gives the command's images.
 
-use crate::arrays::rgb_image;
+use crate::arrays::{f64_channels, rgb_image};
 use crate::errors::value_error;
 use crate::fiber::rgb;
 use crate::rgb::rgb_argument;
@@ -76,7 +76,15 @@ pub fn simulate<'py>(
 
 fn result_dict<'py>(py: Python<'py>, r: &SimResult) -> PyResult<Bound<'py, PyDict>> {
     let dict = PyDict::new(py);
-    let image = |img: &LatLongImage| rgb_image(py, img.grid.width, img.grid.height, &img.pixels);
+    let image = |img: &LatLongImage| {
+        rgb_image(
+            py,
+            img.grid.width,
+            img.grid.height,
+            &img.pixels,
+            f64_channels,
+        )
+    };
     let energy = PyDict::new(py);
     for ((name, lobe), e) in LOBE_NAMES.iter().zip(&r.lobes).zip(&r.energy) {
         dict.set_item(*name, image(lobe))?;

@@ -245,3 +245,30 @@ def test_empty_and_float32_inputs():
     np.testing.assert_allclose(fiber.eval(d, d), fiber.eval(d.astype(np.float64), d.astype(np.float64)))
     # A list of lists is an array too.
     assert fiber.pdf([0.0, 1.0, 0.0], [[0.0, 0.0, 1.0]]).shape == (1,)
+
+
+def test_the_gil_is_released_while_a_call_works(models):
+    """Another Python thread runs while eval works (the call releases the GIL)."""
+    import threading
+    import time
+
+    fiber, rng = models["nonseparable"], np.random.default_rng(5)
+    wi, wo = unit_rows(rng, 600_000), unit_rows(rng, 600_000)
+    span = {}
+
+    def work():
+        span["start"] = time.perf_counter()
+        fiber.eval(wi, wo)
+        span["end"] = time.perf_counter()
+
+    worker = threading.Thread(target=work)
+    ticks = []
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+        time.sleep(0.001)
+    worker.join()
+    start, end = span["start"], span["end"]
+    assert end - start > 0.05, "the call is too short to tell"
+    inside = [t for t in ticks if start + 0.01 < t < end - 0.01]
+    assert len(inside) > 5, f"{len(inside)} ticks of the main thread in {end - start:.3f} s"

@@ -19,12 +19,19 @@ def flags(kwargs):
 
 @pytest.mark.parametrize(
     "extra",
-    [dict(method="srbf", mu_a=0.4), dict(method="brute", brute_grid=3, eta=1.6)],
+    [
+        dict(method="srbf", mu_a=0.4),
+        dict(method="brute", brute_grid=3, eta=1.6),
+        dict(method="path", spp=2, seed=3, max_depth=4, mu_a=0.3),
+    ],
 )
 def test_render_gives_the_pixels_of_cuticle_render(tmp_path, run_cli, extra):
-    run_cli("render", "--device", "cpu", "--out", tmp_path, *flags({**SCENE, **extra}))
+    scene = {**SCENE, **extra}
+    if extra["method"] == "path":
+        del scene["lights"]  # the path tracer samples the map itself
+    run_cli("render", "--device", "cpu", "--out", tmp_path, *flags(scene))
     expected = cuticle.read_exr(tmp_path / "image.exr")
-    image = cuticle.render(**SCENE, **extra)
+    image = cuticle.render(**scene)
     assert image.dtype == np.float32 and image.shape == (24, 40, 3)
     np.testing.assert_array_equal(image, expected)
     assert image.max() > 0
@@ -44,7 +51,10 @@ def test_render_options_change_the_image():
         (dict(width=-3), "width must be a whole number"),
         (dict(supersampling=10**6), "supersampling must be a whole number"),
         (dict(method="fast"), 'method must be srbf, brute or path, got "fast"'),
-        (dict(method="path"), "method path (the path tracer) is `cuticle render --method path`"),
+        (dict(spp=4), "spp, seed and max_depth are for method path"),
+        (dict(method="path", spp=0), "spp must be a whole number in 1..=1048576, got 0"),
+        (dict(method="path", max_depth=10**9), "max_depth must be a whole number in 1..=100000"),
+        (dict(method="path", multiple=False), "multiple = False is for methods srbf and brute"),
         (dict(eta=float("nan")), "eta must be a finite number"),
         (dict(mu_a=(1.0, 2.0)), "mu_a takes one number or r, g, b, got 2 numbers"),
         (dict(groom="/nonexistent/groom.hair"), "/nonexistent/groom.hair"),

@@ -7,7 +7,7 @@ use crate::accel::Accel;
 use crate::env_sampling::EnvSampler;
 use crate::models::StrandModels;
 use crate::path::{PathOptions, World};
-use cuticle_fiber::ranges::CountRange;
+use cuticle_fiber::ranges::{CountRange, RangeError};
 use cuticle_render::{Image, Progress, Scene};
 use glam::DVec3;
 use rand_core::SeedableRng;
@@ -37,6 +37,22 @@ pub struct TraceOptions {
     pub spp: u32,
     pub seed: u64,
     pub path: PathOptions,
+}
+
+impl TraceOptions {
+    /// `spp` and `max_depth` checked against [`SPP`] and [`MAX_DEPTH`], the other path
+    /// options their defaults (what `cuticle render --method path` and the Python bindings
+    /// take).
+    pub fn checked(spp: u64, seed: u64, max_depth: u64) -> Result<Self, RangeError> {
+        Ok(Self {
+            spp: SPP.check(spp)? as u32,
+            seed,
+            path: PathOptions {
+                max_depth: MAX_DEPTH.check(max_depth)? as u32,
+                ..PathOptions::default()
+            },
+        })
+    }
 }
 
 impl Default for TraceOptions {

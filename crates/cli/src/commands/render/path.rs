@@ -29,13 +29,13 @@ use std::time::Instant;
 #[derive(clap::Args, Clone, Debug)]
 pub struct PathArgs {
     /// Samples per pixel (--method path).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = TraceOptions::default().spp)]
     pub spp: u32,
     /// Seed of the path tracer's random numbers.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = TraceOptions::default().seed)]
     pub seed: u64,
     /// Most scattering events of a path.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = TraceOptions::default().path.max_depth)]
     pub max_depth: u32,
     /// Fiber model of the path tracer; marschner takes the scene's hair parameters.
     #[arg(long, value_parser = model_parser(), default_value = "marschner")]
@@ -126,16 +126,11 @@ impl PathArgs {
     }
 
     pub(crate) fn options(&self) -> Result<TraceOptions> {
-        SPP.check(self.spp.into())?;
-        MAX_DEPTH.check(self.max_depth.into())?;
-        Ok(TraceOptions {
-            spp: self.spp,
-            seed: self.seed,
-            path: PathOptions {
-                max_depth: self.max_depth,
-                ..PathOptions::default()
-            },
-        })
+        Ok(TraceOptions::checked(
+            self.spp.into(),
+            self.seed,
+            self.max_depth.into(),
+        )?)
     }
 
     /// The fiber parameters of the non-Marschner models: η from the scene, absorption from
@@ -372,7 +367,7 @@ pub struct TraceBenchArgs {
     /// Samples per pixel of the path-traced part.
     #[arg(long, default_value_t = 4)]
     pub spp: u32,
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = TraceOptions::default().path.max_depth)]
     pub max_depth: u32,
     /// Output folder.
     #[arg(long, default_value = "out/bench-trace")]
