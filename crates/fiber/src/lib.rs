@@ -57,18 +57,3 @@ pub use params::{FiberParams, ParamError};
 pub use ranges::{Range, RangeError};
 pub use registry::{BuildOptions, ModelId, Tabulation};
 pub use spec::{ModelSpec, SpecError};
-
-// The module paths before the fiber crate moved into rooms, for the crates whose owners move
-// them to the new ones (render, gpu, the command line).
-#[doc(hidden)]
-pub use geometry::{bravais, frame, latlong};
-#[doc(hidden)]
-pub use lobes::azimuthal;
-#[doc(hidden)]
-pub use math as special;
-#[doc(hidden)]
-pub use math::vmf;
-#[doc(hidden)]
-pub use models::{marschner2003, nonseparable};
-#[doc(hidden)]
-pub use optics::{absorption, fresnel};

@@ -10,7 +10,7 @@ use crate::errors::value_error;
 use crate::rgb::rgb_argument;
 use cuticle_fiber::furnace::{self, FurnaceRule};
 use cuticle_fiber::lobe::LobeValues;
-use cuticle_fiber::nonseparable::DEFAULT_ITERATIONS;
+use cuticle_fiber::models::nonseparable::DEFAULT_ITERATIONS;
 use cuticle_fiber::params::DEFAULT_ALPHA_DEG;
 use cuticle_fiber::ranges;
 use cuticle_fiber::spec::absorption;

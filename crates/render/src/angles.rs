@@ -1,7 +1,7 @@
 //! The fiber frame at each point and small angle helpers shared by the shading code.
 
 use cuticle_fiber::FiberFrame;
-use cuticle_fiber::special::sin_cos_quadrant;
+use cuticle_fiber::math::sin_cos_quadrant;
 use cuticle_groom::Groom;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -69,17 +69,17 @@ pub fn smoothstep(a: f64, b: f64, x: f64) -> f64 {
 
 /// η′ = √(η² − sin²θ_d)/cos θ_d (Xu et al. 2011 Table 1).
 pub fn eta_prime(eta: f64, theta_d: f64) -> f64 {
-    cuticle_fiber::bravais::eta_prime(eta, theta_d)
+    cuticle_fiber::geometry::bravais::eta_prime(eta, theta_d)
 }
 
 /// σ′_a = μ_a/√(1 − sin²θ_d/η²) (Xu et al. 2011 Table 1).
 pub fn sigma_prime(mu_a: f64, eta: f64, theta_d: f64) -> f64 {
-    mu_a / cuticle_fiber::bravais::cos_theta_t(eta, theta_d).max(1e-6)
+    mu_a / cuticle_fiber::geometry::bravais::cos_theta_t(eta, theta_d).max(1e-6)
 }
 
 /// Φ(p, h) = 2p asin(h/η′) − 2 asin h + pπ (Xu et al. 2011 eq. 8).
 pub fn deflection(p: u32, h: f64, eta_prime: f64) -> f64 {
-    cuticle_fiber::bravais::azimuthal_deflection(p, h, eta_prime)
+    cuticle_fiber::geometry::bravais::azimuthal_deflection(p, h, eta_prime)
 }
 
 /// dΦ/dh = 2p/√(η′² − h²) − 2/√(1 − h²).

@@ -8,7 +8,7 @@
 mod common;
 
 use common::renderer;
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use cuticle_light::SrbfLight;
 use cuticle_render::frame::renderer::srbf_lights;
 use cuticle_render::frame::sub_lights::{fibonacci_sphere, split_wide};

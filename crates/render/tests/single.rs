@@ -18,7 +18,7 @@ fn exact(model: &Marschner2003, theta_j: f64, lambda: f64, ao: FiberAngles) -> [
     let t1 = xi.any_orthonormal_vector();
     let t2 = xi.cross(t1);
     let reach = (6.0 * lambda).min(PI);
-    let rule = cuticle_fiber::special::GaussLegendre::cached(24);
+    let rule = cuticle_fiber::math::GaussLegendre::cached(24);
     let (panels, around) = (6, 256);
     let mut sum = [DVec3::ZERO; 3];
     let mut z = 0.0;

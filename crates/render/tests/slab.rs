@@ -25,7 +25,7 @@
 //! fibers all scattered forward (|φ_o − φ_i| > π/2), which dual scattering's global term
 //! describes (Zinke et al. 2008 §4.1), and the rest.
 
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use cuticle_fiber::{FiberAngles, FiberModel, Marschner2003};
 use cuticle_render::brute::dual_scattering::BruteDual;
 use cuticle_render::brute::half_circle::ExactHalfCircle;
@@ -144,7 +144,7 @@ fn path(model: &Marschner2003, slab: &Slab, z: f64, wo: DVec3, rng: &mut Pcg64Mc
 }
 
 fn wrap(x: f64) -> f64 {
-    cuticle_fiber::frame::wrap_pi(x)
+    cuticle_fiber::geometry::frame::wrap_pi(x)
 }
 
 /// The depth below the top of the first fiber met by a ray entering the top toward −`wo`,

@@ -37,7 +37,7 @@ pub struct FiberArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub pheomelanin: Option<f64>,
     /// Fixed-point iterations per sample of the non-separable model (d'Eon et al. 2014 uses 6).
-    #[arg(long, default_value_t = cuticle_fiber::nonseparable::DEFAULT_ITERATIONS)]
+    #[arg(long, default_value_t = cuticle_fiber::models::nonseparable::DEFAULT_ITERATIONS)]
     pub iterations: u32,
     /// Integrate N_p over h (Marschner 2003: solve its cubics for their roots) at every
     /// evaluation instead of reading the table built once per parameter set (slower; the

@@ -14,7 +14,7 @@ use crate::output::OutDir;
 use crate::progress::bar;
 use crate::svg_plot::{Series, line_plot};
 use anyhow::Result;
-use cuticle_fiber::latlong::index_of_dir;
+use cuticle_fiber::geometry::latlong::index_of_dir;
 use cuticle_fiber::lobe::channel_mean;
 use cuticle_fiber::ranges;
 use cuticle_fiber::{FiberAngles, FiberModel, LatLongGrid, LatLongImage, Lobe};

@@ -15,7 +15,7 @@
 
 use crate::tables::{GridDesc, slot};
 use bytemuck::{Pod, Zeroable};
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
 use cuticle_render::srbf::cg_lobes::{KEPT_PANELS, KEPT_POINTS};
 
 /// The WGSL of the pass, in the order above.
@@ -183,7 +183,7 @@ pub fn workgroups(points: usize) -> (u32, u32) {
 /// The scene's lobe mask as `ShadeParams::lobes`: bit `Lobe::index` for each of R, TT, TRT
 /// (WGSL's LOBE_R, LOBE_TT, LOBE_TRT).
 pub fn lobe_bits(lobes: cuticle_render::Lobes) -> u32 {
-    cuticle_fiber::marschner2003::MarschnerParams::LOBES
+    cuticle_fiber::models::marschner2003::MarschnerParams::LOBES
         .iter()
         .zip(lobes.mask())
         .map(|(lobe, on)| u32::from(on) << lobe.index())

@@ -38,8 +38,8 @@ use crate::srbf::forward_scattering::{Forward, forward};
 use crate::tables::back_scattering::BackScatteringTables;
 use crate::tables::spread::SpreadNormalisation;
 use cuticle_fiber::FiberAngles;
-use cuticle_fiber::marschner2003::MarschnerParams;
-use cuticle_fiber::special::{GaussLegendre, normal_pdf};
+use cuticle_fiber::math::{GaussLegendre, normal_pdf};
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use glam::DVec3;
 use std::f64::consts::PI;
 

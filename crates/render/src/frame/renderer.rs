@@ -26,7 +26,7 @@ use crate::tables::half_circle::HalfCircle;
 use crate::tables::last_built::LastBuilt;
 use crate::tables::lobe_table::{LobeTable, trt_shape};
 use crate::tables::spread::SpreadNormalisation;
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use cuticle_fiber::{FiberFrame, Marschner2003};
 use glam::DVec3;
 use rayon::prelude::*;

@@ -9,7 +9,7 @@
 use crate::frame::shadows::ShadowOptions;
 use crate::scene::hair::HairParams;
 use crate::scene::{Lobes, Method, Scene};
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use glam::DVec3;
 
 /// One shading pass: L_o of each prepared point, with what it was computed from.

@@ -18,7 +18,7 @@
 //! A⁻¹(‖m‖), and its coefficient is the group's energy per channel over its basis integral, so
 //! that every channel's energy is exactly that of the lights it replaces.
 
-use cuticle_fiber::vmf::{concentration, mean_cosine};
+use cuticle_fiber::math::vmf::{concentration, mean_cosine};
 use cuticle_light::{MAX_BANDWIDTH, MIN_BANDWIDTH, SrbfLight};
 use glam::{DVec3, Vec3};
 

@@ -6,10 +6,10 @@
 //! α_R; the renderer takes the longitudinal lobes from the global parameters and only the
 //! absorption (μ_a or melanin) per strand.
 
-use cuticle_fiber::absorption::mu_a_from_melanin;
-use cuticle_fiber::marschner2003::{
+use cuticle_fiber::models::marschner2003::{
     DEFAULT_ALPHA_R_DEG, DEFAULT_BETA_R_DEG, DEFAULT_CAUSTIC_WIDTH_DEG, MarschnerParams,
 };
+use cuticle_fiber::optics::absorption::mu_a_from_melanin;
 use cuticle_fiber::ranges::{self, End, Range, RangeError};
 use cuticle_groom::{Absorption, Appearance};
 use glam::DVec3;

@@ -8,7 +8,7 @@
 
 use crate::frame::sub_lights::{max_sub_lights, split_wide};
 use crate::scene::{Method, Scene, SceneSpec};
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use cuticle_groom::procedural::Preset;
 use std::fmt;
 

@@ -16,11 +16,11 @@ use crate::fresnel::oblique;
 use crate::srbf::circular_gaussian as cg;
 use crate::srbf::taylor;
 use crate::tables::cg_integrals::{FresnelRow, Tables};
-use cuticle_fiber::azimuthal::wrapped_gaussian;
-use cuticle_fiber::bravais;
-use cuticle_fiber::fresnel::fresnel_oblique;
-use cuticle_fiber::marschner2003::{Caustic, CubicDeflection, MarschnerParams};
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::geometry::bravais;
+use cuticle_fiber::lobes::azimuthal::wrapped_gaussian;
+use cuticle_fiber::math::GaussLegendre;
+use cuticle_fiber::models::marschner2003::{Caustic, CubicDeflection, MarschnerParams};
+use cuticle_fiber::optics::fresnel::fresnel_oblique;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// One weighted circular Gaussian b · g^c(φ; μ, λ).
@@ -135,7 +135,7 @@ impl Geometry {
             eta,
             theta_d,
             eta_prime: ep,
-            cos_theta_t: cuticle_fiber::bravais::cos_theta_t(eta, theta_d).max(1e-6),
+            cos_theta_t: cuticle_fiber::geometry::bravais::cos_theta_t(eta, theta_d).max(1e-6),
             tt_peak: 0.5 * (1.0 - f0).powi(2) / tt_slope,
             h_tt: tables.h_tt(eta, theta_d),
             h_trt: tables.h_trt(eta, theta_d),

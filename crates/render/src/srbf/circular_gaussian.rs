@@ -144,7 +144,7 @@ fn build_width_table() -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use cuticle_fiber::special::{GaussLegendre, log_i0};
+    use cuticle_fiber::math::{GaussLegendre, log_i0};
 
     /// The polynomial I₀ against the fiber crate's series, on both sides of the switch and
     /// with exponents that would overflow I₀ alone: 1e-6 relative.

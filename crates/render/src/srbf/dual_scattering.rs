@@ -44,8 +44,8 @@ use crate::tables::half_circle::HalfCircle;
 use crate::tables::lobe_table::AzimuthalLobes;
 use crate::tables::spread::SpreadNormalisation;
 use cuticle_fiber::Lobe;
-use cuticle_fiber::marschner2003::MarschnerParams;
-use cuticle_fiber::special::sin_cos_quadrant;
+use cuticle_fiber::math::sin_cos_quadrant;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_SQRT_2, PI};
 

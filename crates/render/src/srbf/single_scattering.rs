@@ -10,8 +10,8 @@ use crate::srbf::quadrature::Window;
 use crate::tables::cg_integrals::Tables;
 use crate::tables::lobe_table::{AzimuthalLobes, TrtLobes, TtLobes};
 use cuticle_fiber::Lobe;
-use cuticle_fiber::marschner2003::MarschnerParams;
-use cuticle_fiber::special::sin_cos_quadrant;
+use cuticle_fiber::math::sin_cos_quadrant;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use glam::DVec3;
 
 /// An SRBF light seen from a fiber: its centre's angles in the fiber frame, its bandwidth, and
@@ -173,7 +173,7 @@ mod tests {
     use crate::scene::hair::HairParams;
     use crate::tables::cg_integrals::Tables;
     use crate::tables::lobe_table::{FittedLobes, LobeTable};
-    use cuticle_fiber::marschner2003::MarschnerParams;
+    use cuticle_fiber::models::marschner2003::MarschnerParams;
     use glam::DVec3;
 
     fn light(theta: f64, phi: f64, radiance: DVec3) -> LocalLight {

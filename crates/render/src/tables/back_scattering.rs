@@ -42,7 +42,7 @@ use crate::angles::{HALF_PI, deflection, eta_prime, wrap_pi};
 use crate::brute::exact_azimuthal::attenuation;
 use crate::tables::absorption_axis;
 use crate::tables::grid::Grid2;
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 
 /// Largest θ_d tabulated.
 const THETA_MAX: f64 = 1.5;

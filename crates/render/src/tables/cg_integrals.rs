@@ -12,7 +12,7 @@ use crate::fresnel::oblique;
 use crate::srbf::circular_gaussian as cg;
 use crate::tables::grid::{Cell, Grid2};
 use crate::tables::r_fresnel::{self, TERMS};
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
 use std::f64::consts::PI;
 
 /// Range of λ′ the 𝒞_k table covers (Xu et al. 2011 §5).

@@ -9,7 +9,7 @@ use crate::srbf::cg_lobes::{CausticMoments, Geometry, Lobe, TrtShape, trt_fit, t
 use crate::tables::absorption_axis;
 use crate::tables::cg_integrals::Tables;
 use crate::tables::grid::{Cell, Grid2};
-use cuticle_fiber::marschner2003::MarschnerParams;
+use cuticle_fiber::models::marschner2003::MarschnerParams;
 use glam::DVec3;
 use std::f64::consts::PI;
 

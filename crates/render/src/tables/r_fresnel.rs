@@ -12,7 +12,7 @@
 //! G_mn = ∫ x^{m+n+2} dγ does not depend on (η, θ_d): it is factored once.
 
 use crate::fresnel::oblique;
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
 use std::f64::consts::FRAC_PI_2;
 use std::sync::OnceLock;
 

@@ -9,7 +9,7 @@
 //! same interval the shading integrals cover; Z(θ_j, 0) = cos θ_j.
 
 use crate::tables::grid::Grid2;
-use cuticle_fiber::special::GaussLegendre;
+use cuticle_fiber::math::GaussLegendre;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Largest deviation σ tabulated; wider spreads read the edge.
