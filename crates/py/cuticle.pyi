@@ -52,7 +52,7 @@ class Fiber:
         """The sampling density per steradian: shape (N,)."""
     def sample(self, wi: ArrayLike, u: ArrayLike) -> Tuple[F64, F64, F64]:
         """(wo (N, 3), weight S/pdf (N, 3), pdf (N,)) from u of shape (N, 4) in [0, 1)."""
-    def latlong(self, theta_i: float, width: int = ...) -> dict:
+    def latlong(self, theta_i: float, width: int = ..., height: int | None = ...) -> dict:
         """`cuticle lobes`' images ((width/4, width, 3) per lobe and "total") and "energy"."""
 
 class SimResult(TypedDict):

@@ -250,22 +250,30 @@ impl Fiber {
     /// The lobes as lat-long images (docs/conventions.md §4) for light at inclination
     /// `theta_i` (radians, in (-π/2, π/2)), exactly as `cuticle lobes` writes them
     /// (its EXRs hold these values rounded to float32): `width` in 8..=4000, a multiple of 4,
-    /// the height a quarter of it; each pixel the mean of S over the pixel.
+    /// `height` a quarter of it (the default; the grid of `cuticle lobes`); each pixel the mean
+    /// of S over the pixel.
     ///
     /// Returns a dict: "R", "TT", "TRT", "TRRT", "rest", "total" → float64 arrays of shape
     /// (height, width, 3), row 0 at θ_o = +π/2 and column 0 at φ = -π; "energy" → dict of
     /// each lobe's and the "total" albedo ∫ S dω_o (RGB arrays of shape (3,), from the white
     /// furnace's quadrature, lobes.json's "energy"); "energy_error_estimate" → (3,).
-    #[pyo3(signature = (theta_i, width = 400))]
+    #[pyo3(signature = (theta_i, width = 400, height = None))]
     fn latlong<'py>(
         &self,
         py: Python<'py>,
         theta_i: f64,
         width: i64,
+        height: Option<i64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         ranges::THETA_I.check(theta_i).map_err(value_error)?;
         let width = LOBE_WIDTH.check_signed(width).map_err(value_error)?;
         let grid = lobe_grid(width as usize).map_err(value_error)?;
+        if let Some(h) = height.filter(|&h| h != grid.height as i64) {
+            return Err(value_error(format!(
+                "height must be width / 4 = {} (the grid of `cuticle lobes`), got {h}",
+                grid.height
+            )));
+        }
         let rule = FurnaceRule::for_fiber(self.spec.params.beta, self.alpha_deg);
         let model = self.model.as_ref();
         let (lobes, energy) = py.detach(|| {

@@ -228,6 +228,7 @@ def test_hostile_arrays_raise_one_clear_message(models):
         (lambda: fiber.sample(wi, np.zeros((4, 3))), "u must have shape (N, 4), got (4, 3)"),
         (lambda: fiber.latlong(2.0), "theta_i must be a finite number in (-1.5708, 1.5708) radians, got 2"),
         (lambda: fiber.latlong(0.5, width=10), "width must be a multiple of 4, got 10"),
+        (lambda: fiber.latlong(0.5, width=40, height=20), "height must be width / 4 = 10 (the grid of `cuticle lobes`), got 20"),
         (lambda: fiber.latlong(0.5, width=10**6), "width must be a whole number in 8..=4000, got 1000000"),
     ]
     for call, message in cases:

@@ -30,7 +30,7 @@ def test_latlong_is_cuticle_lobes(tmp_path, run_cli, model, flags):
         value = ",".join(map(str, value)) if isinstance(value, tuple) else value
         args += ["--" + key.replace("_", "-"), value]
     run_cli(*args)
-    images = cuticle.Fiber(model, **flags).latlong(theta_i, width=width)
+    images = cuticle.Fiber(model, **flags).latlong(theta_i, width=width, height=width // 4)
     for name in IMAGES:
         exr = cuticle.read_exr(tmp_path / f"{name}.exr")
         assert images[name].shape == exr.shape == (width // 4, width, 3)
