@@ -1,17 +1,19 @@
 //! The GPU renderer: the static tables and compiled passes of one device, and the frame calls
-//! (prepare, shade, update_strands, visibility) that [`crate`]'s documentation walks through.
+//! (prepare, shade, update_strands, visibility) that [`crate`]'s documentation walks through;
+//! [`readback`] reads a frame's buffers back for tests and picking.
+
+mod readback;
 
 use crate::buffers::{self, Stopwatch};
 use crate::device::GpuDevice;
 use crate::draw::{self, DrawInputs, DrawPipelines, Drawing};
-use crate::frame::{GpuFrame, GpuSeconds, Passes, Visibility};
+use crate::frame::{GpuFrame, GpuSeconds, Passes};
 use crate::groom::GroomBuffers;
 use crate::resolve::{self, ResolveParams};
-use crate::shading::{self, LightRecord, PointRecord, ShadeParams};
+use crate::shading::{self, LightRecord, ShadeParams};
 use crate::shadows::{ShadowInputs, ShadowMaps, ShadowPipelines};
 use crate::strands::{self, StrandError, StrandParams, StrandSource};
 use crate::tables::{self, GridDesc, slot};
-use cuticle_render::frame::draw::{Coverage, EMPTY};
 use cuticle_render::frame::renderer::{background as frame_background, srbf_lights};
 use cuticle_render::scene::hair::caustic_bandwidth;
 use cuticle_render::tables::absorption_axis::MU_A_SCALE;
@@ -658,74 +660,6 @@ impl GpuRenderer {
         );
         frame.passes.strand_uploads += 1;
         Ok(())
-    }
-
-    /// T̃ of light j at visible point k, `[k * lights + j]` (the layout of the CPU renderer's
-    /// `Prepared::shadow`), read back from the buffer the shading pass reads.
-    pub fn shadows(&self, frame: &GpuFrame) -> Vec<f32> {
-        let p = &frame.shadows.params;
-        let bytes = buffers::read(
-            &self.gpu.device,
-            &self.gpu.queue,
-            &frame.shadows.shadow,
-            (p.points * p.lights) as usize * 4,
-        );
-        bytemuck::pod_collect_to_vec(&bytes)
-    }
-
-    /// The visibility buffer as drawn on the GPU (the first point of the nearest segment and
-    /// t along it per subsample), read back.
-    pub fn coverage(&self, frame: &GpuFrame) -> Coverage {
-        let n = frame.width * frame.ss * frame.height * frame.ss;
-        let bytes = buffers::read(
-            &self.gpu.device,
-            &self.gpu.queue,
-            &frame.drawing.coverage,
-            n * 8,
-        );
-        let pairs: Vec<[u32; 2]> = bytemuck::pod_collect_to_vec(&bytes);
-        Coverage::from_parts(
-            frame.width,
-            frame.height,
-            frame.ss,
-            pairs.iter().map(|p| p[0]).collect(),
-            pairs.iter().map(|p| f32::from_bits(p[1])).collect(),
-        )
-    }
-
-    /// The visible points, ascending (the order of [`Self::shadows`]), read back.
-    pub fn visible_points(&self, frame: &GpuFrame) -> Vec<u32> {
-        let bytes = buffers::read(
-            &self.gpu.device,
-            &self.gpu.queue,
-            &frame.drawing.visible,
-            frame.visible * size_of::<PointRecord>(),
-        );
-        let records: Vec<PointRecord> = bytemuck::pod_collect_to_vec(&bytes);
-        records.iter().map(|r| r.index).collect()
-    }
-
-    /// The strand seen at each subsample (for picking strands to paint), read back from the
-    /// visibility buffer the GPU drew.
-    pub fn visibility(&self, frame: &GpuFrame) -> Visibility {
-        let cov = self.coverage(frame);
-        let of = &frame.drawing.strand_of_point;
-        Visibility {
-            width: cov.width,
-            height: cov.height,
-            ss: cov.ss,
-            strand: cov
-                .segment
-                .iter()
-                .map(|&s| {
-                    if s == EMPTY {
-                        Visibility::EMPTY
-                    } else {
-                        of[s as usize]
-                    }
-                })
-                .collect(),
-        }
     }
 
     /// A whole frame: prepare and shade.
