@@ -104,6 +104,30 @@ pub struct Summary {
     pub env_height: usize,
 }
 
+impl Summary {
+    /// The record of a format that writes `names` (scene, image, environment), with `strands`
+    /// and an environment image of `env_size` (width, height) pixels.
+    fn of(
+        format: Format,
+        [scene_file, image_file, env_file]: [&str; 3],
+        strands: &strands::Grouped,
+        (env_width, env_height): (usize, usize),
+    ) -> Self {
+        Self {
+            format,
+            scene_file: scene_file.into(),
+            image_file: image_file.into(),
+            strands: strands.strand_count(),
+            skipped_strands: strands.skipped,
+            points: strands.point_count(),
+            materials: strands.groups.len(),
+            env_file: env_file.into(),
+            env_width,
+            env_height,
+        }
+    }
+}
+
 /// A scene written for one renderer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Export {

@@ -76,18 +76,12 @@ pub fn export(
     });
     Ok(Export {
         files,
-        summary: Summary {
-            format: Format::Mitsuba,
-            scene_file: SCENE_FILE.into(),
-            image_file: IMAGE_FILE.into(),
-            strands: strands.strand_count(),
-            skipped_strands: strands.skipped,
-            points: strands.point_count(),
-            materials: strands.groups.len(),
-            env_file: ENV_FILE.into(),
-            env_width: image.width,
-            env_height: image.height,
-        },
+        summary: Summary::of(
+            Format::Mitsuba,
+            [SCENE_FILE, IMAGE_FILE, ENV_FILE],
+            &strands,
+            (image.width, image.height),
+        ),
     })
 }
 

@@ -66,18 +66,12 @@ pub fn export(
     header(&mut text, scene, settings, &strands);
     world(&mut text, &look.fiber, &strands);
     Ok(Export {
-        summary: Summary {
-            format: Format::Pbrt,
-            scene_file: SCENE_FILE.into(),
-            image_file: IMAGE_FILE.into(),
-            strands: strands.strand_count(),
-            skipped_strands: strands.skipped,
-            points: strands.point_count(),
-            materials: strands.groups.len(),
-            env_file: ENV_FILE.into(),
-            env_width: image.width,
-            env_height: image.height,
-        },
+        summary: Summary::of(
+            Format::Pbrt,
+            [SCENE_FILE, IMAGE_FILE, ENV_FILE],
+            &strands,
+            (image.width, image.height),
+        ),
         files: vec![
             ExportFile {
                 name: SCENE_FILE.into(),
