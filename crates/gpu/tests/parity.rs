@@ -69,6 +69,31 @@ fn dual_scattering_under_the_sky_matches_the_cpu() {
     assert!(share > 2.0 * 5e-3, "{share}");
 }
 
+/// Multiple scattering from merged lights (srbf/light_clusters.rs, the default): the GPU's
+/// image is the CPU's merged one, and nearer it than the CPU's with every light shaded apart
+/// (`merge_bandwidth` 0), so a port that shaded the groups' lights apart, or dropped them,
+/// would fail. Light hair, whose multiple scattering is the largest share.
+#[test]
+fn merged_lights_match_the_cpu() {
+    let mut s = spec(150, "default", 40);
+    s.hair.mu_a = Some([0.1, 0.2, 0.4]);
+    let scene = load(s);
+    let e = compare(&scene, "sky, light hair, merged lights");
+    assert!(e < 5e-3, "{e}");
+    let mut apart = scene.clone();
+    apart.spec.shadows.merge_bandwidth = 0.0;
+    let (got, frame) = gpu().render(&scene).expect("GPU render");
+    let (merged, prepared, _) = cpu().render(&scene);
+    let (without, _, _) = cpu().render(&apart);
+    let mask = agreeing_pixels(&gpu().coverage(&frame), &prepared.coverage);
+    let to_merged = relative_rmse(&got, &merged, &mask.hair);
+    let to_apart = relative_rmse(&got, &without, &mask.hair);
+    eprintln!(
+        "the GPU's image is {to_merged:.2e} from the CPU's merged, {to_apart:.2e} from apart"
+    );
+    assert!(to_apart > 3.0 * to_merged, "{to_merged} vs {to_apart}");
+}
+
 /// Hair pixels from the CPU renderer's visibility buffer.
 fn hair_pixels_of(prepared: &cuticle_render::Prepared) -> Vec<bool> {
     let cov = &prepared.coverage;

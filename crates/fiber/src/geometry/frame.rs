@@ -68,7 +68,12 @@ impl FiberFrame {
     }
 
     pub fn angles(&self, d: DVec3) -> FiberAngles {
-        FiberAngles::from_dir(DVec3::new(d.dot(self.u), d.dot(self.v), d.dot(self.w)))
+        FiberAngles::from_dir(self.local(d))
+    }
+
+    /// `d` in this frame's coordinates (u, v, w).
+    pub fn local(&self, d: DVec3) -> DVec3 {
+        DVec3::new(d.dot(self.u), d.dot(self.v), d.dot(self.w))
     }
 
     pub fn dir(&self, a: FiberAngles) -> DVec3 {

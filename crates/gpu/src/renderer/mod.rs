@@ -16,6 +16,7 @@ use crate::strands::{self, StrandError, StrandParams, StrandSource};
 use crate::tables::{self, GridDesc, slot};
 use cuticle_render::frame::renderer::{background as frame_background, srbf_lights};
 use cuticle_render::scene::hair::caustic_bandwidth;
+use cuticle_render::srbf::light_clusters::LightClusters;
 use cuticle_render::tables::absorption_axis::MU_A_SCALE;
 use cuticle_render::tables::spread::MIN_Z;
 use cuticle_render::{Image, Method, Renderer, Scene, Timings};
@@ -160,7 +161,7 @@ impl GpuRenderer {
             ("the opacity maps", layer_bytes),
             ("the shadows", shadow_bytes),
         ])?;
-        let lights = light_records(&world_lights);
+        let lights = light_records(&world_lights, scene.spec.shadows.merge_bandwidth);
         let strand_source = StrandSource::of(scene);
         let (strand_records, strands_buffer, strand_uploads) = match kept {
             Some(f)
@@ -334,7 +335,7 @@ impl GpuRenderer {
             ("the opacity maps", layer_bytes),
             ("the shadows", shadow_bytes),
         ])?;
-        let lights = light_records(&world_lights);
+        let lights = light_records(&world_lights, scene.spec.shadows.merge_bandwidth);
         let shadows = ShadowMaps::new(
             device,
             &self.shadows,
@@ -670,15 +671,18 @@ impl GpuRenderer {
     }
 }
 
-/// The lights as the shading pass reads them.
-fn light_records(lights: &[cuticle_render::WorldLight]) -> Vec<LightRecord> {
+/// The lights as the shading pass reads them, with the groups multiple scattering merges them
+/// in (cells of `merge_bandwidth`).
+fn light_records(lights: &[cuticle_render::WorldLight], merge_bandwidth: f64) -> Vec<LightRecord> {
+    let ends = LightClusters::of(lights, merge_bandwidth).group_ends();
     lights
         .iter()
-        .map(|l| LightRecord {
+        .zip(ends)
+        .map(|(l, group_end)| LightRecord {
             direction: l.direction.as_vec3().to_array(),
             bandwidth: l.bandwidth as f32,
             radiance: l.radiance.as_vec3().to_array(),
-            _pad: 0.0,
+            group_end,
         })
         .collect()
 }

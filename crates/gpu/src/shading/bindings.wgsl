@@ -78,7 +78,9 @@ struct Light {
     direction: vec3<f32>,
     bandwidth: f32,
     radiance: vec3<f32>,
-    _pad: f32,
+    // The end of the run of lights merged for dual scattering that this light starts, or 0
+    // (srbf/light_clusters.rs's LightClusters::group_ends).
+    group_end: u32,
 }
 
 @group(0) @binding(0) var<uniform> params: Params;

@@ -80,7 +80,8 @@ pub struct LightRecord {
     pub direction: [f32; 3],
     pub bandwidth: f32,
     pub radiance: [f32; 3],
-    pub _pad: f32,
+    /// [`cuticle_render::srbf::light_clusters::LightClusters::group_ends`].
+    pub group_end: u32,
 }
 
 /// The lights one dispatch of the pass adds (bindings.wgsl's `LightChunk`).

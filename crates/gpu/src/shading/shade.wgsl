@@ -22,8 +22,12 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(num_workgroups) 
         if (any(lit != vec3<f32>(0.0))) {
             sum += lit * modes(ao.theta, ao.phi, la.theta, la.phi, light.bandwidth, params.lobes);
         }
-        if (params.multiple != 0u) {
+        // A group of lights merged for dual scattering is a run of lights (srbf/light_clusters.rs);
+        // its first light's group_end ends it, the others' is 0.
+        if (params.multiple != 0u && light.group_end == j + 1u) {
             sum += dual_light(ao.theta, ao.phi, la.theta, la.phi, light.bandwidth, light.radiance, t);
+        } else if (params.multiple != 0u && light.group_end > j + 1u) {
+            sum += dual_group(f, ao.theta, ao.phi, k, j, light.group_end);
         }
     }
     if (chunk.first != 0u) {

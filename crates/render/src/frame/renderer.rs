@@ -19,6 +19,7 @@ use crate::scene::camera::View;
 use crate::scene::{Lobes, Method, Scene, light_to_world};
 use crate::srbf::cg_lobes::TrtShape;
 use crate::srbf::dual_scattering::Dual;
+use crate::srbf::light_clusters::{LightClusters, sort_by_cell};
 use crate::srbf::single_scattering::{LocalLight, ShadingFiber, modes, shade};
 use crate::tables::back_scattering::BackScatteringTables;
 use crate::tables::cg_integrals::Tables;
@@ -27,7 +28,7 @@ use crate::tables::last_built::LastBuilt;
 use crate::tables::lobe_table::{LobeTable, trt_shape};
 use crate::tables::spread::SpreadNormalisation;
 use cuticle_fiber::models::marschner2003::MarschnerParams;
-use cuticle_fiber::{FiberFrame, Marschner2003};
+use cuticle_fiber::{FiberAngles, FiberFrame, Marschner2003};
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -354,6 +355,7 @@ impl Renderer {
                     m: scene.spec.quadrature,
                 }),
                 lights: &prepared.lights,
+                clusters: LightClusters::of(&prepared.lights, scene.spec.shadows.merge_bandwidth),
                 shadows: scene.spec.shadows,
                 m: scene.spec.quadrature,
                 shown: scene.spec.lobes,
@@ -385,7 +387,7 @@ impl Renderer {
             .par_iter()
             .enumerate()
             .map_init(
-                || (Vec::new(), Vec::new()),
+                || (Vec::new(), Vec::new(), Vec::new()),
                 |scratch, (k, &p)| {
                     if !stale[k] {
                         return previous.map_or(DVec3::ZERO, |b| b.colours[k]);
@@ -516,6 +518,8 @@ struct SrbfFrame<'a> {
     lobes: &'a LobeTable,
     dual: Option<Dual<'a>>,
     lights: &'a [WorldLight],
+    /// The lights' groups for multiple scattering.
+    clusters: LightClusters,
     shadows: ShadowOptions,
     m: usize,
     /// The single-scattering lobes that shade (a debug view).
@@ -524,17 +528,24 @@ struct SrbfFrame<'a> {
 
 impl SrbfFrame<'_> {
     /// Single scattering from the lights seen in the fiber frame and shadowed (none below the
-    /// cutoff), plus dual scattering from the unshadowed lights and their T̃. `scratch` holds
-    /// the two light lists between points.
+    /// cutoff), plus dual scattering from the unshadowed lights and their T̃, merged in the
+    /// frame's groups. The scratch lists (the lights seen from the point, shadowed, and their
+    /// directions in the fiber frame) are kept between points.
     fn shade(
         &self,
         point: &ShadingPoint,
-        (local, lit): &mut (Vec<LocalLight>, Vec<LocalLight>),
+        (local, lit, directions): &mut (Vec<LocalLight>, Vec<LocalLight>, Vec<DVec3>),
     ) -> DVec3 {
         let ao = point.fiber_frame.angles(point.toward_eye);
+        directions.clear();
+        directions.extend(
+            self.lights
+                .iter()
+                .map(|l| point.fiber_frame.local(l.direction)),
+        );
         local.clear();
-        local.extend(self.lights.iter().map(|l| {
-            let a = point.fiber_frame.angles(l.direction);
+        local.extend(directions.iter().zip(self.lights).map(|(&d, l)| {
+            let a = FiberAngles::from_dir(d);
             LocalLight {
                 theta: a.theta,
                 phi: a.phi,
@@ -567,7 +578,15 @@ impl SrbfFrame<'_> {
                 .sum(),
         };
         let multiple = self.dual.as_ref().map_or(DVec3::ZERO, |d| {
-            d.shade(fiber, ao.theta, ao.phi, local, point.shadow)
+            d.shade_clustered(
+                fiber,
+                ao.theta,
+                ao.phi,
+                local,
+                directions,
+                point.shadow,
+                &self.clusters,
+            )
         });
         single + multiple
     }
@@ -618,16 +637,19 @@ pub fn shadows_of_lit(scene: &Scene, points: &[u32], lights: &[WorldLight]) -> V
 }
 
 /// The SRBF lights in world space, the wide ones split into sub-lights
-/// ([`crate::frame::sub_lights`]).
+/// ([`crate::frame::sub_lights`]), ordered by the cells multiple scattering merges them in
+/// ([`crate::srbf::light_clusters`]).
 pub fn srbf_lights(scene: &Scene) -> Vec<WorldLight> {
-    split_wide(&scene.lights, scene.spec.shadows.split_bandwidth)
+    let mut lights = split_wide(&scene.lights, scene.spec.shadows.split_bandwidth)
         .iter()
         .map(|l| WorldLight {
             direction: light_to_world(l.centre()),
             bandwidth: l.bandwidth as f64,
             radiance: l.coefficient.as_dvec3(),
         })
-        .collect()
+        .collect();
+    sort_by_cell(&mut lights, scene.spec.shadows.merge_bandwidth);
+    lights
 }
 
 /// The environment seen through each pixel centre.

@@ -13,6 +13,7 @@
 
 use crate::frame::sub_lights::SPLIT_BANDWIDTH;
 use crate::scene::camera::NEAR;
+use crate::srbf::light_clusters::MERGE_BANDWIDTH;
 use cuticle_groom::Groom;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -33,6 +34,9 @@ pub struct ShadowOptions {
     /// Bandwidth λ_s of the sub-lights that replace every light wider than √2 λ_s, each with its
     /// own map ([`crate::frame::sub_lights`]); from 20 up nothing is split (one map per light).
     pub split_bandwidth: f64,
+    /// Bandwidth of the cells in which lights no wider than it are merged, point by point, for
+    /// multiple scattering ([`crate::srbf::light_clusters`]); 0 merges none (the reference).
+    pub merge_bandwidth: f64,
 }
 
 impl Default for ShadowOptions {
@@ -42,6 +46,7 @@ impl Default for ShadowOptions {
             density: 1.0,
             cutoff: 1e-4,
             split_bandwidth: SPLIT_BANDWIDTH,
+            merge_bandwidth: MERGE_BANDWIDTH,
         }
     }
 }

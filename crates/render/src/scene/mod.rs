@@ -238,6 +238,13 @@ pub const SHADOW_SPLIT_BANDWIDTH: Range = Range {
     max: End::Closed(1000.0),
     unit: "",
 };
+/// Bandwidth of the cells lights are merged in for multiple scattering (0: none merged).
+pub const SHADOW_MERGE_BANDWIDTH: Range = Range {
+    name: "shadows.merge_bandwidth",
+    min: End::Closed(0.0),
+    max: End::Closed(4.0),
+    unit: "",
+};
 /// Rotation of the environment about the up axis, degrees.
 pub const ENV_ROTATE_DEG: Range = Range {
     name: "env_rotate_deg",
@@ -290,6 +297,7 @@ impl SceneSpec {
         SHADOW_DENSITY.check(self.shadows.density)?;
         SHADOW_CUTOFF.check(self.shadows.cutoff)?;
         SHADOW_SPLIT_BANDWIDTH.check(self.shadows.split_bandwidth)?;
+        SHADOW_MERGE_BANDWIDTH.check(self.shadows.merge_bandwidth)?;
         LIGHTS.check_usize(self.lights)?;
         if self.groom.parse::<Preset>().is_ok() {
             STRANDS.check_usize(self.strands)?;

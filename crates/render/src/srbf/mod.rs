@@ -12,6 +12,7 @@ pub mod cg_lobes;
 pub mod circular_gaussian;
 pub mod dual_scattering;
 pub mod forward_scattering;
+pub mod light_clusters;
 pub mod quadrature;
 pub mod single_scattering;
 pub mod taylor;
