@@ -35,7 +35,9 @@ const WIDTH_TOLERANCE: f64 = 1e-6;
 /// that is alone.
 fn cells_of(lights: &[WorldLight], bandwidth: f64) -> Vec<usize> {
     let grouped = |l: &WorldLight| {
-        l.bandwidth <= bandwidth && 2.0 * l.bandwidth >= bandwidth * (1.0 - WIDTH_TOLERANCE)
+        l.bandwidth > 0.0
+            && l.bandwidth <= bandwidth
+            && 2.0 * l.bandwidth >= bandwidth * (1.0 - WIDTH_TOLERANCE)
     };
     let cells = if lights.iter().any(grouped) {
         fibonacci_sphere(max_sub_lights(bandwidth).min(MAX_CELLS))
