@@ -128,8 +128,8 @@ impl Merge {
 }
 
 /// The narrowest and widest beam a merge gives (the fitted lights' range).
-const MIN_BEAM: f64 = cuticle_light::MIN_BANDWIDTH as f64;
-const MAX_BEAM: f64 = cuticle_light::MAX_BANDWIDTH as f64;
+const MIN_BEAM: f64 = cuticle_light::MIN_BANDWIDTH;
+const MAX_BEAM: f64 = cuticle_light::MAX_BANDWIDTH;
 
 /// The 2 of Zinke et al. 2008's f_back = 2Ā_b g(θ_h − Δ̄_b, σ̄_b²)/(π cos²θ_d) and of Xu et
 /// al. 2011 eq. 29: with g a unit Gaussian in θ_h, f_back carries 2Ā_b of the power a fiber
