@@ -615,7 +615,10 @@ impl ViewApp {
             return;
         }
         if self.full.is_none() || self.screenshot_sent {
-            ctx.request_repaint();
+            // The worker wakes the window when a frame arrives. Repainting every UI frame while
+            // waiting took half of a two-core machine's CPU from the renderer (a UI frame in
+            // software GL under xvfb costs tens of milliseconds), and every 100 ms a third.
+            ctx.request_repaint_after(SCREENSHOT_POLL);
             return;
         }
         if self.frames_after_full < self.options.after_frames {
@@ -656,6 +659,9 @@ fn write_color_image(path: &std::path::Path, image: &egui::ColorImage) -> Result
         .map_err(|e| format!("the screenshot: {e}"))?;
     crate::image_file::write_atomic(path, &png)
 }
+
+/// How often `--screenshot` looks for the first full frame (or its written file) unasked.
+const SCREENSHOT_POLL: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// A callback that asks `ctx` for a repaint.
 fn repaint(ctx: &egui::Context) -> impl Fn() + Send + 'static {
