@@ -96,6 +96,15 @@ impl MapFrame {
     }
 }
 
+/// A point along a segment, as a map's two passes read it: its texel, depth along the light's
+/// travel and optical depth.
+#[derive(Clone, Copy)]
+struct Sample {
+    texel: u32,
+    depth: f32,
+    area: f64,
+}
+
 /// One light's deep opacity map.
 struct OpacityMap {
     n: usize,
@@ -198,23 +207,32 @@ impl OpacityMap {
             first: Vec::new(),
             sat: Vec::new(),
         };
-        // Two passes over the same samples, generated twice rather than stored: the first hair
-        // of each texel, then each sample's optical depth into its layer behind it.
+        // Two passes over the same samples: the first hair of each texel, then each sample's
+        // optical depth into its layer behind it. The samples are kept between the passes
+        // (16 bytes each, freed with the build) rather than generated twice.
         let locals: Vec<DVec3> = groom
             .positions()
             .iter()
             .map(|p| map.local(p.as_dvec3()))
             .collect();
         let mut first = vec![f32::INFINITY; n * n];
-        map.for_each_sample(groom, &locals, |k, z, _| {
-            first[k] = first[k].min(z);
-        });
-        let mut layers = vec![[0.0f64; NL]; n * n];
+        let mut samples = Vec::with_capacity(2 * locals.len());
         map.for_each_sample(groom, &locals, |k, z, area| {
-            let rel = (z - first[k]) as f64 / radius;
+            first[k] = first[k].min(z);
+            samples.push(Sample {
+                texel: k as u32,
+                depth: z,
+                area,
+            });
+        });
+        drop(locals);
+        let mut layers = vec![[0.0f64; NL]; n * n];
+        for &Sample { texel, depth, area } in &samples {
+            let k = texel as usize;
+            let rel = (depth - first[k]) as f64 / radius;
             let l = LAYERS[1..].iter().position(|&b| rel < b).unwrap_or(NL - 1);
             layers[k][l] += area;
-        });
+        }
         map.first = first;
         map.sat = summed_area(layers, n);
         map
