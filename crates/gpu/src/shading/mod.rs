@@ -114,7 +114,12 @@ pub const BUDGET_SHARE: f64 = 0.9;
 /// and global term (76 + 47 m). Counted from the WGSL, each loop once more for its last test,
 /// then raised to what lavapipe counts (`loop_cost_bounds_what_llvmpipe_counts`: 187, 560,
 /// 370 and 744 measured at m = 4 for single / single + dual, circular / eccentric, 5,461 for
-/// eccentric single + dual at m = 32).
+/// eccentric single + dual at m = 32). A group of lights merged for dual scattering
+/// (`dual_group`) runs one evaluation (and the moment matching's Newton steps) for all its
+/// lights and, per light, the arrival's loop of
+/// three and its table reads, less than the per-light bound; a group that runs past a
+/// dispatch's last light adds its few remaining lights' arrivals to that dispatch, within the
+/// margin [`BUDGET_SHARE`] leaves.
 pub fn loop_cost(m: u32, eccentric: bool, multiple: bool) -> u32 {
     let m = m.clamp(2, 256);
     let trt = if eccentric { 140 } else { 20 };

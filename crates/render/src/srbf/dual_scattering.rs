@@ -22,6 +22,11 @@
 //! by the exact Z(θ_j, σ) of [`crate::tables::spread`]: cos θ_j overstated a wide sky above hanging
 //! hair twice over against the brute force.
 //!
+//! A frame shades the merged lights of [`crate::srbf::light_clusters`]
+//! ([`Dual::shade_clustered`]): a group's direct energies and its forward-scattered ones
+//! each become one light at each point; [`Dual::shade`] shades every light apart (the
+//! reference, and a frame's with `merge_bandwidth` 0).
+//!
 //! Ā_b, Δ̄_b, σ̄_b are taken at the θ_d of the light's centre, (θ_o − θ_j)/2 (eqs. 29–31 as
 //! printed, Ā_b at each quadrature node and Δ̃_b, σ̃_b averaged over θ_j ± σ, were tried: the
 //! agreement with the brute force in tests/multiple.rs moved by under 2 % and shading took 24 %

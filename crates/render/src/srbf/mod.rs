@@ -4,7 +4,8 @@
 //!    from the circular Gaussians of [`cg_lobes`] ([`circular_gaussian`], with the [`taylor`]
 //!    expansion of the attenuation).
 //! 2. [`dual_scattering`]: multiple scattering (Zinke et al. 2008) as a global term through
-//!    [`forward_scattering`] along each light's shadow path and a local back-scattering term.
+//!    [`forward_scattering`] along each light's shadow path and a local back-scattering term,
+//!    from the lights merged in the groups of [`light_clusters`] at each point.
 //!
 //! Each has a reference twin of the same name in [`crate::brute`].
 
