@@ -30,9 +30,10 @@ const SHADOW_PER_POINT_AND_LIGHT: u64 = 12;
 /// Bytes per texel of an opacity map: first depth (and its copy while building), six layers
 /// summed in place into their summed-area tables.
 const PER_TEXEL: u64 = 56;
-/// Bytes per point of one opacity map: the groom's points in the map's frame (its depth
-/// samples are generated, not stored).
-const MAP_PER_POINT: u64 = 24;
+/// Bytes per point of one opacity map: the groom's points in the map's frame, and the depth
+/// samples kept between its two passes (at most
+/// [`crate::frame::shadows::KEPT_SAMPLES_PER_POINT`] of 16 bytes a point, else none).
+const MAP_PER_POINT: u64 = 24 + 16 * crate::frame::shadows::KEPT_SAMPLES_PER_POINT as u64;
 /// The renderer's tables, the default environment and its fit, and everything else of fixed
 /// size (tests/memory.rs measures the peak against the whole estimate).
 const FIXED: u64 = 40 << 20;
