@@ -34,8 +34,9 @@ pub struct ShadowOptions {
     /// Bandwidth λ_s of the sub-lights that replace every light wider than √2 λ_s, each with its
     /// own map ([`crate::frame::sub_lights`]); from 20 up nothing is split (one map per light).
     pub split_bandwidth: f64,
-    /// Bandwidth of the cells in which lights no wider than it are merged, point by point, for
-    /// multiple scattering ([`crate::srbf::light_clusters`]); 0 merges none (the reference).
+    /// Bandwidth of the cells in which the lights between half as wide and as wide as it are
+    /// merged, point by point, for multiple scattering ([`crate::srbf::light_clusters`]); 0
+    /// merges none (the reference).
     pub merge_bandwidth: f64,
 }
 
@@ -268,7 +269,7 @@ impl OpacityMap {
                 r.start..r.end.saturating_sub(1)
             })
             .map(|i| self.steps(locals[i + 1] - locals[i]))
-            .sum()
+            .fold(0, usize::saturating_add)
     }
 
     /// Samples along a segment `d` (in the map's frame): spaced at most a texel across it.
