@@ -97,8 +97,9 @@ impl MapFrame {
     }
 }
 
-/// The most samples a point's segment may make for a map to keep them between its two passes
-/// (the default scene makes 1.5 to 4.4, straight.hair 1.9 to 5.7, depending on the light).
+/// The most samples a point's segment may make for a map to keep them between its two passes:
+/// above what the default scene and straight.hair make (BENCHMARKS.md), so that they keep
+/// theirs, and a bound on what a map of long segments may hold.
 pub const KEPT_SAMPLES_PER_POINT: usize = 6;
 
 /// A point along a segment, as a map's two passes read it: its texel, depth along the light's
